@@ -1,0 +1,35 @@
+# Finds the Debian packages the project builds with; a missing one stops the
+# configure step with the apt-get command that installs it.
+function(pt_missing what package)
+  message(FATAL_ERROR "${what} was not found. Install it with:\n"
+                      "    sudo apt-get install ${package}\n"
+                      "or run scripts/setup.sh, which installs every dependency.")
+endfunction()
+
+find_package(nlohmann_json 3 QUIET)
+if(NOT nlohmann_json_FOUND)
+  pt_missing("nlohmann-json (JSON parser)" nlohmann-json3-dev)
+endif()
+
+find_package(tinyobjloader QUIET)
+if(NOT tinyobjloader_FOUND)
+  pt_missing("tinyobjloader (OBJ reader)" libtinyobjloader-dev)
+endif()
+
+find_path(STB_INCLUDE_DIR stb_image_write.h PATH_SUFFIXES stb)
+find_library(STB_LIBRARY stb)
+if(NOT STB_INCLUDE_DIR OR NOT STB_LIBRARY)
+  pt_missing("stb (stb_image, stb_image_write)" libstb-dev)
+endif()
+add_library(pt_stb INTERFACE)
+target_include_directories(pt_stb SYSTEM INTERFACE ${STB_INCLUDE_DIR})
+target_link_libraries(pt_stb INTERFACE ${STB_LIBRARY})
+
+if(PT_BUILD_TESTS)
+  find_package(doctest QUIET)
+  if(NOT doctest_FOUND)
+    pt_missing("doctest (unit tests)" doctest-dev)
+  endif()
+endif()
+
+find_package(Threads REQUIRED)

@@ -1,0 +1,191 @@
+#include "apps/options.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <functional>
+#include <sstream>
+#include <thread>
+
+#include "core/error.h"
+
+namespace pt {
+namespace {
+
+// Strict number parsing: the whole argument must be the number.
+long long to_integer(const std::string& flag, const std::string& text, long long lo, long long hi) {
+    errno = 0;
+    char* end = nullptr;
+    long long v = std::strtoll(text.c_str(), &end, 10);
+    if (text.empty() || *end != '\0' || errno == ERANGE || v < lo || v > hi) {
+        std::ostringstream s;
+        s << flag << ": expected a whole number";
+        if (hi == lo) s << " equal to " << lo;
+        else if (hi >= (1ll << 40)) s << " >= " << lo;
+        else s << " in [" << lo << ", " << hi << "]";
+        s << ", got '" << text << "'";
+        throw InputError(s.str());
+    }
+    return v;
+}
+
+double to_real(const std::string& flag, const std::string& text, double lo, double hi, bool open_lo = false) {
+    char* end = nullptr;
+    double v = std::strtod(text.c_str(), &end);
+    bool ok = !text.empty() && *end == '\0' && std::isfinite(v) && (open_lo ? v > lo : v >= lo) && v <= hi;
+    if (!ok) {
+        std::ostringstream s;
+        s << flag << ": expected a number " << (open_lo ? "> " : ">= ") << lo;
+        if (hi < 1e300) s << " and <= " << hi;
+        s << ", got '" << text << "'";
+        throw InputError(s.str());
+    }
+    return v;
+}
+
+std::string one_of(const std::string& flag, const std::string& text, std::initializer_list<const char*> choices) {
+    std::string list;
+    for (const char* c : choices) {
+        if (text == c) return text;
+        list += (list.empty() ? "" : ", ") + std::string(c);
+    }
+    throw InputError(flag + ": expected one of " + list + ", got '" + text + "'");
+}
+
+/// One flag: its names, how many values follow it, and what it sets.
+struct FlagSpec {
+    std::vector<std::string> names;
+    int arity;
+    std::function<void(Options&, const std::string& flag, const std::vector<std::string>& values)> apply;
+};
+
+const int kMax = 1 << 30;
+
+std::vector<FlagSpec> flag_table() {
+    using V = const std::vector<std::string>&;
+    using S = const std::string&;
+    return {
+        {{"-s"}, 1, [](Options& o, S f, V v) { o.render.spp = int(to_integer(f, v[0], 1, kMax)); }},
+        {{"-a"}, 2, [](Options& o, S f, V v) {
+             o.render.adaptive = true;
+             o.render.samples_per_batch = int(to_integer(f + " (samples per batch)", v[0], 1, kMax));
+             o.render.max_tolerance = to_real(f + " (max tolerance)", v[1], 0, 1e300, true);
+         }},
+        {{"-l"}, 1, [](Options& o, S f, V v) { o.render.light_samples = int(to_integer(f, v[0], 1, kMax)); }},
+        {{"-t"}, 1, [](Options& o, S f, V v) { o.threads = int(to_integer(f, v[0], 1, 4096)); }},
+        {{"-m"}, 1, [](Options& o, S f, V v) { o.render.max_depth = int(to_integer(f, v[0], 0, 100000)); }},
+        {{"-o"}, 1, [](Options& o, S f, V v) { o.render.accumulate_bounces = to_integer(f, v[0], 0, 1) == 1; }},
+        {{"-e"}, 1, [](Options& o, S, V v) { o.environment_map = v[0]; }},
+        {{"-f"}, 1, [](Options& o, S, V v) { o.output = v[0]; }},
+        {{"-r"}, 2, [](Options& o, S f, V v) {
+             o.resolution = {int(to_integer(f + " (width)", v[0], 1, 1 << 15)),
+                             int(to_integer(f + " (height)", v[1], 1, 1 << 15))};
+         }},
+        {{"-p"}, 4, [](Options& o, S f, V v) {
+             o.cell = PixelRect{int(to_integer(f + " (x)", v[0], 0, 1 << 15)), int(to_integer(f + " (y)", v[1], 0, 1 << 15)),
+                                int(to_integer(f + " (dx)", v[2], 1, 1 << 15)), int(to_integer(f + " (dy)", v[3], 1, 1 << 15))};
+         }},
+        {{"-H"}, 0, [](Options& o, S, V) { o.render.direct = DirectStrategy::hemisphere; }},
+        {{"-b"}, 1, [](Options& o, S f, V v) { o.lens_radius = to_real(f, v[0], 0, 1e300); }},
+        {{"-d"}, 1, [](Options& o, S f, V v) { o.focal_distance = to_real(f, v[0], 0, 1e300, true); }},
+        {{"--seed"}, 1, [](Options& o, S f, V v) { o.render.seed = uint64_t(to_integer(f, v[0], 0, (1ll << 62))); }},
+        {{"--hdr"}, 1, [](Options& o, S f, V v) {
+             if (v[0].size() < 4 || v[0].substr(v[0].size() - 4) != ".pfm")
+                 throw InputError(f + ": expected a file name ending in .pfm, got '" + v[0] + "'");
+             o.hdr_output = v[0];
+         }},
+        {{"--accel"}, 1, [](Options& o, S f, V v) { o.accelerator.use_bvh = one_of(f, v[0], {"none", "bvh"}) == "bvh"; }},
+        {{"--integrator"}, 1, [](Options& o, S f, V v) {
+             std::string k = one_of(f, v[0], {"auto", "normals", "depth", "whitted", "direct", "path"});
+             for (IntegratorKind kind : {IntegratorKind::automatic, IntegratorKind::normals, IntegratorKind::depth,
+                                         IntegratorKind::whitted, IntegratorKind::direct, IntegratorKind::path})
+                 if (k == to_string(kind)) o.render.integrator = kind;
+         }},
+        {{"--student"}, 1, [](Options& o, S f, V v) { o.student = StageSet::parse(v[0], f); }},
+        {{"--stats"}, 1, [](Options& o, S, V v) { o.stats_output = v[0]; }},
+        {{"-q"}, 0, [](Options& o, S, V) { o.quiet = true; }},
+        {{"--direct"}, 1, [](Options& o, S f, V v) {
+             std::string d = one_of(f, v[0], {"light", "hemisphere", "mis"});
+             o.render.direct = d == "light" ? DirectStrategy::light
+                               : d == "hemisphere" ? DirectStrategy::hemisphere : DirectStrategy::mis;
+         }},
+        {{"--triangle"}, 1, [](Options& o, S f, V v) { o.triangle_test = one_of(f, v[0], {"moller", "watertight"}); }},
+        {{"--bvh-split"}, 1, [](Options& o, S f, V v) { o.accelerator.split = one_of(f, v[0], {"sah", "median", "middle"}); }},
+        {{"--max-leaf"}, 1, [](Options& o, S f, V v) { o.accelerator.max_leaf = int(to_integer(f, v[0], 1, 255)); }},
+        {{"--bvh-view"}, 1, [](Options& o, S f, V v) {
+             for (char c : v[0])
+                 if (c != 'L' && c != 'R') throw InputError(f + ": expected a path of L and R steps, got '" + v[0] + "'");
+             o.bvh_view = v[0];
+         }},
+        {{"-h", "--help"}, 0, [](Options& o, S, V) { o.help = true; }},
+    };
+}
+
+}  // namespace
+
+Options parse_options(const std::vector<std::string>& args, StageSet default_student) {
+    Options o;
+    o.student = default_student;
+    o.threads = int(std::max(1u, std::thread::hardware_concurrency()));
+    static const std::vector<FlagSpec> table = flag_table();
+    for (size_t i = 0; i < args.size(); ++i) {
+        const std::string& arg = args[i];
+        if (arg.size() > 1 && arg[0] == '-') {
+            const FlagSpec* spec = nullptr;
+            for (const FlagSpec& f : table)
+                for (const std::string& name : f.names)
+                    if (name == arg) spec = &f;
+            if (!spec) throw InputError(arg + ": unknown option (see --help)");
+            if (i + size_t(spec->arity) >= args.size() && spec->arity > 0)
+                throw InputError(arg + ": expected " + std::to_string(spec->arity) + " value" +
+                                 (spec->arity > 1 ? "s" : "") + " after it");
+            std::vector<std::string> values(args.begin() + long(i) + 1, args.begin() + long(i) + 1 + spec->arity);
+            spec->apply(o, arg, values);
+            i += size_t(spec->arity);
+        } else {
+            if (!o.scene_path.empty())
+                throw InputError("unexpected argument '" + arg + "' (the scene is already '" + o.scene_path + "')");
+            o.scene_path = arg;
+        }
+    }
+    if (o.help) return o;
+    if (o.scene_path.empty()) throw InputError("no scene given (usage: [options] SCENE.json|MESH.obj; see --help)");
+    if (!o.output.empty()) {
+        std::string ext = o.output.size() >= 4 ? o.output.substr(o.output.size() - 4) : "";
+        if (ext != ".png") throw InputError("-f: expected a file name ending in .png, got '" + o.output + "'");
+    }
+    return o;
+}
+
+std::string usage(const std::string& program, StageSet default_student) {
+    std::ostringstream s;
+    s << "usage: " << program << " [options] SCENE.json|MESH.obj\n\n"
+      << "  -s N            camera rays per pixel (the maximum with -a)            [1]\n"
+      << "  -a N TOL        adaptive sampling: samples per batch, max tolerance    [off; 32 0.05]\n"
+      << "  -l N            samples per area light                                 [1]\n"
+      << "  -t N            threads                                                [all hardware threads]\n"
+      << "  -m N            maximum ray depth (bounces)                            [1]\n"
+      << "  -o 0|1          accumulate bounces (1) or only the m-th bounce (0)     [1]\n"
+      << "  -e FILE         environment map (.hdr or .pfm, lat-long)\n"
+      << "  -f FILE.png     output image                                           [<scene name>.png]\n"
+      << "  -r W H          resolution                                             [scene film, else 480 360]\n"
+      << "  -p X Y DX DY    render only that cell (other pixels stay black)\n"
+      << "  -H              hemisphere sampling for direct light (= --direct hemisphere)\n"
+      << "  -b R, -d D      thin lens: lens radius, focal distance                 [pinhole]\n"
+      << "  --seed N        random seed; same seed, same image at any -t           [0]\n"
+      << "  --hdr FILE.pfm  also write the linear image\n"
+      << "  --accel none|bvh                                                       [bvh]\n"
+      << "  --integrator auto|normals|depth|whitted|direct|path                    [auto]\n"
+      << "  --student LIST  stages with student code: camera,intersect,bvh,direct,global,adaptive,\n"
+      << "                  all or none                                            [" << default_student.to_string() << "]\n"
+      << "  --stats FILE.json  seconds per phase, rays, spp, BVH, effects\n"
+      << "  -q              no progress bar\n"
+      << "  --direct light|hemisphere|mis                                          [light]\n"
+      << "  --triangle moller|watertight                                           [moller]\n"
+      << "  --bvh-split sah|median|middle, --max-leaf N                            [sah, 4]\n"
+      << "  --bvh-view PATH highlight the BVH node at PATH (L/R steps from the root)\n"
+      << "\nexit codes: 0 ok, 1 failure, 2 bad input, 3 a student stage is not implemented yet\n";
+    return s.str();
+}
+
+}  // namespace pt

@@ -1,0 +1,44 @@
+// Options: the command line of pathtracer and part1..part5 (DESIGN.md
+// "Command line", CS184-compatible), parsed strictly: a bad value gets one
+// message naming the flag and what it expected, and exit code 2.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "render/renderer.h"
+#include "render/settings.h"
+#include "stages/stage_set.h"
+#include "stages/stages.h"
+
+namespace pt {
+
+struct Options {
+    std::string scene_path;            ///< SCENE.json or MESH.obj
+    RenderSettings render;             ///< -s -a -l -m -o -H --direct --integrator --seed
+    AcceleratorSettings accelerator;   ///< --accel --bvh-split --max-leaf
+    StageSet student;                  ///< --student
+    int threads = 1;                   ///< -t (default: all hardware threads)
+    std::string output;                ///< -f; empty = "<scene name>.png"
+    std::string hdr_output;            ///< --hdr FILE.pfm
+    std::string stats_output;          ///< --stats FILE.json
+    std::string environment_map;       ///< -e FILE
+    std::optional<std::pair<int, int>> resolution;  ///< -r W H
+    std::optional<PixelRect> cell;     ///< -p X Y DX DY
+    std::optional<double> lens_radius;     ///< -b
+    std::optional<double> focal_distance;  ///< -d
+    bool quiet = false;                ///< -q
+    std::string triangle_test = "moller";  ///< --triangle moller|watertight
+    std::optional<std::string> bvh_view;   ///< --bvh-view PATH
+    bool help = false;                 ///< -h / --help
+};
+
+/// Parses argv[1..]; `student` is the executable's default for --student.
+/// Throws InputError for unknown flags, missing or bad values.
+Options parse_options(const std::vector<std::string>& args, StageSet default_student);
+
+/// The --help text of a renderer executable.
+std::string usage(const std::string& program, StageSet default_student);
+
+}  // namespace pt

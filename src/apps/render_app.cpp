@@ -1,0 +1,179 @@
+#include "apps/render_app.h"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+
+#include <nlohmann/json.hpp>
+
+#include "apps/options.h"
+#include "core/error.h"
+#include "core/progress.h"
+#include "core/timer.h"
+#include "image/image_io.h"
+#include "render/integrator.h"
+#include "render/render_context.h"
+#include "render/renderer.h"
+#include "scene/effects.h"
+#include "scene/scene_loader.h"
+
+namespace pt {
+namespace {
+
+std::string directory_of(const std::string& path) {
+    size_t slash = path.find_last_of('/');
+    return slash == std::string::npos ? "." : (slash == 0 ? "/" : path.substr(0, slash));
+}
+
+/// Fails before rendering, not after, when an output cannot be written.
+void check_writable(const std::string& path, const std::string& flag) {
+    if (path.empty()) return;
+    std::string dir = directory_of(path);
+    if (access(dir.c_str(), W_OK) != 0)
+        throw InputError(flag + ": cannot write " + path + ": directory '" + dir + "' does not exist or is not writable");
+    if (access(path.c_str(), F_OK) == 0 && access(path.c_str(), W_OK) != 0)
+        throw InputError(flag + ": cannot write " + path + ": permission denied");
+}
+
+/// Applies the flags that change the scene: resolution, lens, environment map.
+void apply_scene_overrides(Scene& scene, const Options& options) {
+    if (options.resolution) {
+        scene.film_width = options.resolution->first;
+        scene.film_height = options.resolution->second;
+    }
+    if (options.lens_radius) scene.camera.lens_radius = *options.lens_radius;
+    if (options.focal_distance) scene.camera.focal_distance = *options.focal_distance;
+    if (!options.environment_map.empty()) {
+        std::ifstream probe(options.environment_map);
+        if (!probe) throw InputError("-e: cannot read " + options.environment_map);
+        std::string ext = file_extension(options.environment_map);
+        if (ext != ".hdr" && ext != ".pfm")
+            throw InputError("-e: expected a .hdr or .pfm lat-long map, got '" + options.environment_map + "'");
+        EnvironmentLight env;
+        env.file = options.environment_map;
+        scene.environment = env;
+    }
+    scene.camera.aspect = double(scene.film_width) / scene.film_height;
+    scene.camera.finalize(scene.path + ": camera");
+    if (options.cell) {
+        const PixelRect& c = *options.cell;
+        if (c.x + c.width > scene.film_width || c.y + c.height > scene.film_height)
+            throw InputError("-p: the cell does not fit in the " + std::to_string(scene.film_width) + "x" +
+                             std::to_string(scene.film_height) + " image");
+    }
+}
+
+struct PhaseSeconds {
+    double load = 0, build = 0, render = 0;
+};
+
+void write_stats(const std::string& path, const std::string& program, const Options& options, const Scene& scene,
+                 const Effects& effects, IntegratorKind integrator, const AcceleratorInfo& accel,
+                 const RenderResult& result, const PhaseSeconds& seconds) {
+    const RayCounters& c = result.counters;
+    double rays = double(std::max<uint64_t>(c.rays(), 1));
+    nlohmann::json j;
+    j["program"] = program;
+    j["scene"] = scene.path;
+    j["resolution"] = {scene.film_width, scene.film_height};
+    j["spp"] = options.render.spp;
+    j["threads"] = options.threads;
+    j["seed"] = options.render.seed;
+    j["student_stages"] = options.student.to_string();
+    j["integrator"] = to_string(integrator);
+    j["effects"] = effects.names();
+    j["seconds"] = {{"load", seconds.load}, {"build", seconds.build}, {"render", seconds.render},
+                    {"total", seconds.load + seconds.build + seconds.render}};
+    j["rays"] = {{"camera", c.camera_rays}, {"closest_hit", c.closest_hit_rays}, {"shadow", c.shadow_rays},
+                 {"total", c.rays()}};
+    j["mrays_per_second"] = seconds.render > 0 ? c.rays() / seconds.render * 1e-6 : 0.0;
+    j["primitive_tests_per_ray"] = c.primitive_tests / rays;
+    j["nodes_visited_per_ray"] = c.nodes_visited / rays;
+    j["nonfinite_samples"] = c.nonfinite_samples;
+    j["primitives"] = {{"triangles", scene.triangles.size()}, {"spheres", scene.spheres.size()},
+                       {"emitters", scene.emitters.size()}};
+    j["accelerator"] = {{"name", accel.name}, {"nodes", accel.nodes}, {"depth", accel.depth}, {"bytes", accel.bytes}};
+    std::ofstream out(path);
+    if (!out) throw InputError("--stats: cannot write " + path);
+    out << j.dump(2) << "\n";
+}
+
+int run(const std::vector<std::string>& args, const std::string& program, StageSet default_student) {
+    Options options = parse_options(args, default_student);
+    if (options.help) {
+        std::cout << usage(program, default_student);
+        return kExitOk;
+    }
+    PhaseSeconds seconds;
+    Timer timer;
+    Scene scene = load_scene(options.scene_path);
+    apply_scene_overrides(scene, options);
+    if (options.output.empty()) options.output = scene.name + ".png";
+    check_writable(options.output, "-f");
+    check_writable(options.hdr_output, "--hdr");
+    check_writable(options.stats_output, "--stats");
+    seconds.load = timer.seconds();
+
+    Stages stages = make_stages(options.student);
+    Effects effects = analyze_effects(scene, options.render);
+    std::string reason;
+    IntegratorKind kind = choose_integrator(scene, effects, options.render, &reason);
+    std::unique_ptr<Integrator> integrator = make_integrator(kind);
+    std::cout << program << ": " << scene.path << ": " << scene.triangles.size() << " triangles, "
+              << scene.spheres.size() << " spheres, " << scene.emitters.size() << " emitters\n"
+              << program << ": student stages: " << options.student.to_string() << "\n"
+              << program << ": effects: " << effects.to_string() << "\n"
+              << program << ": integrator: " << to_string(kind) << " (" << reason << ")\n";
+
+    timer.reset();
+    std::unique_ptr<Accelerator> accelerator = build_accelerator(scene, stages, options.accelerator);
+    seconds.build = timer.seconds();
+
+    RenderContext context{scene, *accelerator, stages, options.render, *integrator};
+    RenderOptions render_options;
+    render_options.threads = options.threads;
+    render_options.show_progress = !options.quiet && Progress::stderr_is_terminal();
+    render_options.cell = options.cell;
+    RenderResult result = render_image(context, render_options);
+    seconds.render = result.seconds;
+
+    write_png(result.image, options.output);
+    if (!options.hdr_output.empty()) write_pfm(result.image, options.hdr_output);
+    AcceleratorInfo accel_info = accelerator->info();
+    if (!options.stats_output.empty())
+        write_stats(options.stats_output, program, options, scene, effects, kind, accel_info, result, seconds);
+
+    const RayCounters& c = result.counters;
+    double rays = double(std::max<uint64_t>(c.rays(), 1));
+    char line[256];
+    std::snprintf(line, sizeof line, "%dx%d, %d spp, %.2f s, %.2f Mrays/s, %.1f tests/ray", scene.film_width,
+                  scene.film_height, options.render.spp, seconds.render,
+                  seconds.render > 0 ? c.rays() / seconds.render * 1e-6 : 0.0, c.primitive_tests / rays);
+    std::cout << program << ": wrote " << options.output << (options.hdr_output.empty() ? "" : " and " + options.hdr_output)
+              << "\n" << program << ": " << line << "\n";
+    if (c.nonfinite_samples > 0)
+        std::cout << program << ": warning: " << c.nonfinite_samples << " NaN/Inf samples were dropped\n";
+    return kExitOk;
+}
+
+}  // namespace
+
+int run_render_app(int argc, char** argv, const std::string& program, StageSet default_student) {
+    std::vector<std::string> args(argv + 1, argv + argc);
+    try {
+        return run(args, program, default_student);
+    } catch (const InputError& e) {
+        std::cerr << program << ": error: " << e.what() << "\n";
+        return kExitBadInput;
+    } catch (const NotImplemented& e) {
+        std::cerr << program << ": " << e.what() << " (no image written)\n";
+        return kExitNotImplemented;
+    } catch (const std::exception& e) {
+        std::cerr << program << ": internal error: " << e.what() << "\n";
+        return kExitFailure;
+    }
+}
+
+}  // namespace pt

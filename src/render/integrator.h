@@ -1,0 +1,45 @@
+// Integrator: turns a camera ray into a radiance estimate. One instance is
+// shared by all threads, so Li must be const and keep its state in the Rng.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "core/color.h"
+#include "core/ray.h"
+#include "core/rng.h"
+#include "render/settings.h"
+
+namespace pt {
+
+struct RenderContext;
+
+class Integrator {
+public:
+    virtual ~Integrator() = default;
+    /// Incident radiance at the ray origin from direction -ray.d.
+    virtual Color Li(const RenderContext& context, const Ray& ray, Rng& rng) const = 0;
+    virtual IntegratorKind kind() const = 0;
+};
+
+/// n * 0.5 + 0.5 of the first hit's shading normal; black on a miss (CS184 Part 1).
+std::unique_ptr<Integrator> make_normals_integrator();
+/// Grey level falling linearly from 1 at the nearest point of the scene's
+/// bounding sphere to 0 at its farthest; black on a miss.
+std::unique_ptr<Integrator> make_depth_integrator();
+
+}  // namespace pt
+
+namespace pt {
+
+struct Scene;
+struct Effects;
+
+/// The integrator `--integrator auto` picks for a scene (DESIGN.md "Effects"),
+/// with the reason in one phrase for the start-up line.
+IntegratorKind choose_integrator(const Scene& scene, const Effects& effects, const RenderSettings& settings,
+                                 std::string* reason);
+/// An integrator of the given kind (not `automatic`).
+std::unique_ptr<Integrator> make_integrator(IntegratorKind kind);
+
+}  // namespace pt

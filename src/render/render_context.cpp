@@ -1,0 +1,61 @@
+#include "render/render_context.h"
+
+#include <cmath>
+
+#include "core/counters.h"
+#include "core/math.h"
+#include "render/integrator.h"
+
+namespace pt {
+
+SurfaceInteraction make_interaction(const Scene& scene, const Ray& ray, const Hit& hit) {
+    SurfaceInteraction si;
+    si.t = hit.t;
+    si.b1 = hit.b1;
+    si.b2 = hit.b2;
+    si.primitive = hit.primitive;
+    si.material = &scene.material_of(hit.primitive);
+    si.wo = (-ray.d).unit();
+    si.depth = ray.depth;
+    if (scene.is_sphere(hit.primitive)) {
+        // Re-project onto the sphere: |p - c| = r up to a few ulp, whatever t's
+        // error (pbrt-v3 section 3.9.4); the bound covers the re-projection
+        // and the addition of the centre.
+        const Sphere& s = scene.sphere_record(hit.primitive).sphere;
+        Vec3 local = ray.o + hit.t * ray.d - s.center;
+        local *= s.radius / local.norm();
+        si.p = s.center + local;
+        si.p_error = gamma(6) * (abs(local) + abs(s.center));
+        si.ng = local / s.radius;
+    } else {
+        // Barycentric interpolation has error at most gamma(7) sum |b_i p_i|
+        // (pbrt-v3 section 3.9.3), independent of how inaccurate t is.
+        Triangle tri = scene.triangle(hit.primitive);
+        double b0 = 1.0 - hit.b1 - hit.b2;
+        si.p = b0 * tri.p0 + hit.b1 * tri.p1 + hit.b2 * tri.p2;
+        si.p_error = gamma(7) * (abs(b0 * tri.p0) + abs(hit.b1 * tri.p1) + abs(hit.b2 * tri.p2));
+        si.ng = cross(tri.p1 - tri.p0, tri.p2 - tri.p0).unit();
+    }
+    si.n = hit.n;
+    // A student routine may hand back an unnormalised or zero normal; the
+    // film must still never see NaN, so fall back to the geometric normal.
+    double len = si.n.norm();
+    si.n = (len > 0 && std::isfinite(len)) ? si.n / len : si.ng;
+    return si;
+}
+
+std::optional<SurfaceInteraction> RenderContext::intersect(const Ray& ray) const {
+    ++thread_counters().closest_hit_rays;
+    std::optional<Hit> hit = accelerator.intersect(ray);
+    if (!hit) return std::nullopt;
+    return make_interaction(scene, ray, *hit);
+}
+
+bool RenderContext::occluded(const Ray& ray) const {
+    ++thread_counters().shadow_rays;
+    return accelerator.occluded(ray);
+}
+
+Color RenderContext::radiance(const Ray& ray, Rng& rng) const { return integrator.Li(*this, ray, rng); }
+
+}  // namespace pt

@@ -1,0 +1,78 @@
+#include "render/renderer.h"
+
+#include <algorithm>
+#include <atomic>
+#include <exception>
+#include <mutex>
+#include <thread>
+
+#include "core/progress.h"
+#include "core/timer.h"
+#include "render/render_context.h"
+
+namespace pt {
+
+RenderResult render_image(const RenderContext& context, const RenderOptions& options) {
+    const int width = context.scene.film_width, height = context.scene.film_height;
+    PixelRect area = options.cell.value_or(PixelRect{0, 0, width, height});
+    constexpr int kTile = 16;
+    const int tiles_x = (area.width + kTile - 1) / kTile;
+    const int tiles_y = (area.height + kTile - 1) / kTile;
+    const int tile_count = tiles_x * tiles_y;
+
+    RenderResult result;
+    result.image = Image(width, height);
+    result.sample_counts.assign(size_t(width) * height, 0);
+    Progress progress("render", uint64_t(area.width) * area.height, options.show_progress);
+
+    std::atomic<int> next_tile{0};
+    std::atomic<bool> abort{false};
+    std::exception_ptr failure;
+    std::mutex merge_mutex;
+    Timer timer;
+
+    auto worker = [&] {
+        RayCounters& counters = thread_counters();
+        RayCounters before = counters;
+        try {
+            for (int tile = next_tile++; tile < tile_count && !abort; tile = next_tile++) {
+                int x0 = area.x + (tile % tiles_x) * kTile, y0 = area.y + (tile / tiles_x) * kTile;
+                int x1 = std::min(x0 + kTile, area.x + area.width), y1 = std::min(y0 + kTile, area.y + area.height);
+                for (int y = y0; y < y1; ++y) {
+                    for (int x = x0; x < x1; ++x) {
+                        PixelResult pixel = context.stages.camera.raytrace_pixel(context, x, y);
+                        // The last line of defence: whatever a stage returns, the
+                        // film never stores NaN or Inf.
+                        if (!pixel.radiance.is_finite()) {
+                            ++counters.nonfinite_samples;
+                            pixel.radiance = Color(0);
+                        }
+                        result.image.set(x, y, pixel.radiance);
+                        result.sample_counts[size_t(y) * width + x] = uint32_t(std::max(pixel.samples, 0));
+                        counters.camera_rays += uint64_t(std::max(pixel.samples, 0));
+                    }
+                }
+                progress.advance(uint64_t(x1 - x0) * (y1 - y0));
+            }
+        } catch (...) {
+            std::lock_guard<std::mutex> lock(merge_mutex);
+            if (!failure) failure = std::current_exception();
+            abort = true;
+        }
+        // Add only this render's share of the thread's counters.
+        std::lock_guard<std::mutex> lock(merge_mutex);
+        result.counters += counters - before;
+    };
+
+    int threads = std::max(1, std::min(options.threads, tile_count));
+    std::vector<std::thread> pool;
+    for (int i = 1; i < threads; ++i) pool.emplace_back(worker);
+    worker();  // the calling thread works too
+    for (std::thread& t : pool) t.join();
+    result.seconds = timer.seconds();
+    if (failure) std::rethrow_exception(failure);
+    progress.finish();
+    return result;
+}
+
+}  // namespace pt

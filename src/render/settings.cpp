@@ -1,0 +1,26 @@
+#include "render/settings.h"
+
+namespace pt {
+
+const char* to_string(DirectStrategy s) {
+    switch (s) {
+        case DirectStrategy::light: return "light";
+        case DirectStrategy::hemisphere: return "hemisphere";
+        case DirectStrategy::mis: return "mis";
+    }
+    return "?";
+}
+
+const char* to_string(IntegratorKind k) {
+    switch (k) {
+        case IntegratorKind::automatic: return "auto";
+        case IntegratorKind::normals: return "normals";
+        case IntegratorKind::depth: return "depth";
+        case IntegratorKind::whitted: return "whitted";
+        case IntegratorKind::direct: return "direct";
+        case IntegratorKind::path: return "path";
+    }
+    return "?";
+}
+
+}  // namespace pt

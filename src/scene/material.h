@@ -1,0 +1,32 @@
+// Material: what a surface is made of, as the scene file describes it.
+// The BSDFs that turn these parameters into scattering live with the
+// lighting stages (Parts 3 and 4); this is only the data.
+#pragma once
+
+#include <string>
+
+#include "core/color.h"
+
+namespace pt {
+
+enum class MaterialType {
+    diffuse,  ///< Lambertian: albedo
+    mirror,   ///< perfect specular reflection: reflectance
+    glass,    ///< smooth dielectric: ior, reflectance, transmittance
+};
+
+struct Material {
+    std::string name;                       ///< the key in the scene's "materials", or "mesh.obj:mtlname"
+    MaterialType type = MaterialType::diffuse;
+    Color albedo{0.8, 0.8, 0.8};            ///< diffuse reflectance in [0, 1]
+    Color emission;                         ///< emitted radiance, W/(m^2 sr) in scene units; 0 = none
+    Color reflectance{1, 1, 1};             ///< mirror and glass: tint of reflected light, [0, 1]
+    Color transmittance{1, 1, 1};           ///< glass: tint of refracted light, [0, 1]
+    double ior = 1.5;                       ///< glass: index of refraction inside / outside
+
+    bool is_emissive() const { return !emission.is_black(); }
+};
+
+const char* to_string(MaterialType type);
+
+}  // namespace pt

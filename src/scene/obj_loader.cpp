@@ -1,0 +1,144 @@
+#include "scene/obj_loader.h"
+
+#include <tiny_obj_loader.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <map>
+
+#include "core/error.h"
+#include "scene/scene.h"
+
+namespace pt {
+namespace {
+
+std::string directory_of(const std::string& path) {
+    size_t slash = path.find_last_of('/');
+    return slash == std::string::npos ? "./" : path.substr(0, slash + 1);
+}
+
+std::string base_name(const std::string& path) {
+    size_t slash = path.find_last_of('/');
+    return slash == std::string::npos ? path : path.substr(slash + 1);
+}
+
+Material to_material(const tinyobj::material_t& m, const std::string& prefix) {
+    Material mat;
+    mat.name = prefix + m.name;
+    mat.albedo = Color(m.diffuse[0], m.diffuse[1], m.diffuse[2]);
+    mat.emission = Color(m.emission[0], m.emission[1], m.emission[2]);
+    if (m.illum == 3 || m.illum == 5) {
+        mat.type = MaterialType::mirror;
+        mat.reflectance = Color(m.specular[0], m.specular[1], m.specular[2]);
+    } else if (m.illum == 4 || m.illum == 6 || m.illum == 7) {
+        mat.type = MaterialType::glass;
+        mat.ior = m.ior > 0 ? m.ior : 1.5;
+    }
+    return mat;
+}
+
+void check_material(const Material& m, const std::string& where) {
+    auto in_unit = [](const Color& c) { return c.r >= 0 && c.g >= 0 && c.b >= 0 && c.r <= 1 && c.g <= 1 && c.b <= 1; };
+    if (!m.albedo.is_finite() || !in_unit(m.albedo))
+        throw InputError(where + ": material '" + m.name + "': Kd must lie in [0, 1]");
+    if (!m.emission.is_finite() || m.emission.r < 0 || m.emission.g < 0 || m.emission.b < 0)
+        throw InputError(where + ": material '" + m.name + "': Ke must be finite and >= 0");
+    if (!in_unit(m.reflectance)) throw InputError(where + ": material '" + m.name + "': Ks must lie in [0, 1]");
+}
+
+}  // namespace
+
+MeshData read_obj(Scene& scene, const std::string& path, const ObjLoadOptions& options) {
+    const std::string where = options.where.empty() ? path : options.where + " (" + path + ")";
+    {
+        std::ifstream probe(path);
+        if (!probe) throw InputError(where + ": cannot read mesh: " + std::strerror(errno));
+    }
+    tinyobj::attrib_t attrib;
+    std::vector<tinyobj::shape_t> shapes;
+    std::vector<tinyobj::material_t> materials;
+    std::string warn, err;
+    bool ok = tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, path.c_str(),
+                               directory_of(path).c_str(), /*triangulate=*/true);
+    if (!ok) throw InputError(where + ": not a readable OBJ file: " + (err.empty() ? warn : err));
+    // tinyobjloader only warns about a missing material library; a scene
+    // whose colours silently vanish is worse than an error.
+    if (warn.find("not found") != std::string::npos || err.find("not found") != std::string::npos)
+        throw InputError(where + ": " + (warn.empty() ? err : warn));
+
+    MeshData mesh;
+    const size_t vertex_count = attrib.vertices.size() / 3;
+    const size_t normal_count = attrib.normals.size() / 3;
+    for (size_t i = 0; i < vertex_count; ++i) {
+        Vec3 p(attrib.vertices[3 * i], attrib.vertices[3 * i + 1], attrib.vertices[3 * i + 2]);
+        if (!p.is_finite()) throw InputError(where + ": vertex " + std::to_string(i + 1) + " is not finite");
+        mesh.positions.push_back(p);
+    }
+    for (size_t i = 0; i < normal_count; ++i) {
+        Vec3 n(attrib.normals[3 * i], attrib.normals[3 * i + 1], attrib.normals[3 * i + 2]);
+        if (!n.is_finite()) throw InputError(where + ": normal " + std::to_string(i + 1) + " is not finite");
+        // A zero normal cannot be normalised; the intersection falls back to
+        // the geometric normal when interpolation yields zero anyway.
+        mesh.normals.push_back(n.norm() > 0 ? n.unit() : n);
+    }
+
+    // The MTL's materials become scene materials named "mesh.obj:name".
+    std::vector<uint32_t> scene_material(materials.size());
+    if (!options.material) {
+        for (size_t m = 0; m < materials.size(); ++m) {
+            Material mat = to_material(materials[m], base_name(path) + ":");
+            check_material(mat, where);
+            scene_material[m] = uint32_t(scene.materials.size());
+            scene.materials.push_back(mat);
+        }
+    }
+
+    bool all_smooth = normal_count > 0;
+    std::vector<std::array<uint32_t, 3>> face_normals;
+    for (const tinyobj::shape_t& shape : shapes) {
+        const std::vector<tinyobj::index_t>& idx = shape.mesh.indices;
+        for (size_t f = 0; f + 2 < idx.size(); f += 3) {
+            std::array<uint32_t, 3> face, normals;
+            for (int k = 0; k < 3; ++k) {
+                const tinyobj::index_t& c = idx[f + k];
+                if (c.vertex_index < 0 || size_t(c.vertex_index) >= vertex_count)
+                    throw InputError(where + ": face in '" + shape.name + "' uses vertex " +
+                                     std::to_string(c.vertex_index + 1) + " but the file has " +
+                                     std::to_string(vertex_count));
+                if (c.normal_index >= 0 && size_t(c.normal_index) >= normal_count)
+                    throw InputError(where + ": face in '" + shape.name + "' uses normal " +
+                                     std::to_string(c.normal_index + 1) + " but the file has " +
+                                     std::to_string(normal_count));
+                face[k] = uint32_t(c.vertex_index);
+                normals[k] = c.normal_index >= 0 ? uint32_t(c.normal_index) : kNoIndex;
+                if (c.normal_index < 0) all_smooth = false;
+            }
+            mesh.faces.push_back(face);
+            face_normals.push_back(normals);
+
+            int material_id = shape.mesh.material_ids.empty() ? -1 : shape.mesh.material_ids[f / 3];
+            uint32_t m;
+            if (options.material) {
+                m = *options.material;
+            } else if (material_id >= 0 && size_t(material_id) < materials.size()) {
+                m = scene_material[material_id];
+            } else if (options.fallback_material) {
+                m = *options.fallback_material;
+            } else {
+                throw InputError(where + ": faces of '" + shape.name +
+                                 "' have no material: give the object a \"material\" or the OBJ an MTL file");
+            }
+            mesh.face_materials.push_back(m);
+        }
+    }
+    if (mesh.faces.empty()) throw InputError(where + ": the mesh has no faces");
+    // Smooth shading only when every corner has a normal; a mix would need
+    // per-face bookkeeping that no test mesh needs.
+    if (all_smooth) mesh.face_normals = std::move(face_normals);
+    else mesh.normals.clear();
+    return mesh;
+}
+
+}  // namespace pt

@@ -1,0 +1,62 @@
+#include "scene/scene.h"
+
+namespace pt {
+
+const char* to_string(MaterialType type) {
+    switch (type) {
+        case MaterialType::diffuse: return "diffuse";
+        case MaterialType::mirror: return "mirror";
+        case MaterialType::glass: return "glass";
+    }
+    return "unknown";
+}
+
+Triangle Scene::triangle(uint32_t prim) const {
+    const TriangleRecord& r = triangles[prim];
+    Triangle t;
+    t.p0 = positions[r.v[0]];
+    t.p1 = positions[r.v[1]];
+    t.p2 = positions[r.v[2]];
+    if (r.n[0] != kNoIndex) {
+        t.has_normals = true;
+        t.n0 = normals[r.n[0]];
+        t.n1 = normals[r.n[1]];
+        t.n2 = normals[r.n[2]];
+    }
+    return t;
+}
+
+const Material& Scene::material_of(uint32_t prim) const {
+    return materials[is_sphere(prim) ? sphere_record(prim).material : triangles[prim].material];
+}
+
+BBox Scene::primitive_bounds(uint32_t prim) const {
+    if (is_sphere(prim)) {
+        const Sphere& s = sphere_record(prim).sphere;
+        return BBox(s.center - Vec3(s.radius), s.center + Vec3(s.radius));
+    }
+    const TriangleRecord& r = triangles[prim];
+    BBox b(positions[r.v[0]], positions[r.v[1]]);
+    b.expand(positions[r.v[2]]);
+    return b;
+}
+
+double Scene::primitive_area(uint32_t prim) const {
+    if (is_sphere(prim)) {
+        double r = sphere_record(prim).sphere.radius;
+        return 4.0 * 3.14159265358979323846 * r * r;
+    }
+    Triangle t = triangle(prim);
+    return 0.5 * cross(t.p1 - t.p0, t.p2 - t.p0).norm();
+}
+
+void Scene::finalize() {
+    emitters.clear();
+    bounds = BBox();
+    for (uint32_t i = 0; i < primitive_count(); ++i) {
+        bounds.expand(primitive_bounds(i));
+        if (material_of(i).is_emissive() && primitive_area(i) > 0) emitters.push_back(i);
+    }
+}
+
+}  // namespace pt

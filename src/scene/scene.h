@@ -1,0 +1,57 @@
+// Scene: everything a render needs to know about the world, in world space:
+// camera and film, materials, primitives (triangles and spheres), lights.
+// Built by the loaders (scene_loader.h), then read-only while rendering.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/bbox.h"
+#include "scene/camera.h"
+#include "scene/geometry.h"
+#include "scene/light.h"
+#include "scene/material.h"
+
+namespace pt {
+
+struct Scene {
+    std::string name;       ///< file name without directory and extension; default output name
+    std::string path;       ///< the file it was loaded from
+    Camera camera;
+    int film_width = 480;   ///< pixels
+    int film_height = 360;  ///< pixels
+
+    std::vector<Material> materials;
+    std::vector<Vec3> positions;             ///< mesh vertex positions, world space
+    std::vector<Vec3> normals;               ///< mesh vertex normals, world space, unit
+    std::vector<TriangleRecord> triangles;   ///< primitive ids 0 .. T-1
+    std::vector<SphereRecord> spheres;       ///< primitive ids T .. T+S-1
+
+    std::vector<PointLight> point_lights;
+    std::vector<DirectionalLight> directional_lights;
+    std::optional<EnvironmentLight> environment;
+
+    /// Ids of the primitives whose material emits (area lights); set by finalize().
+    std::vector<uint32_t> emitters;
+    /// Bounds of all primitives; set by finalize().
+    BBox bounds;
+
+    uint32_t primitive_count() const { return uint32_t(triangles.size() + spheres.size()); }
+    bool is_sphere(uint32_t prim) const { return prim >= triangles.size(); }
+    const SphereRecord& sphere_record(uint32_t prim) const { return spheres[prim - triangles.size()]; }
+    /// The triangle with id `prim` (< triangles.size()) as the intersection routines see it.
+    Triangle triangle(uint32_t prim) const;
+    const Material& material_of(uint32_t prim) const;
+    BBox primitive_bounds(uint32_t prim) const;
+    double primitive_area(uint32_t prim) const;
+    bool has_lights() const {
+        return !emitters.empty() || !point_lights.empty() || !directional_lights.empty() ||
+               environment.has_value();
+    }
+
+    /// Computes `emitters` and `bounds`; call after adding primitives.
+    void finalize();
+};
+
+}  // namespace pt

@@ -1,0 +1,293 @@
+#include "scene/scene_loader.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "core/error.h"
+#include "core/math.h"
+#include "image/image_io.h"
+#include "scene/json_reader.h"
+#include "scene/mesh.h"
+#include "scene/obj_loader.h"
+
+namespace pt {
+namespace {
+
+std::string directory_of(const std::string& path) {
+    size_t slash = path.find_last_of('/');
+    return slash == std::string::npos ? "" : path.substr(0, slash + 1);
+}
+
+std::string resolve(const std::string& scene_path, const std::string& file) {
+    if (!file.empty() && file[0] == '/') return file;
+    return directory_of(scene_path) + file;
+}
+
+std::string stem(const std::string& path) {
+    size_t slash = path.find_last_of('/');
+    std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
+    size_t dot = name.find_last_of('.');
+    return dot == std::string::npos ? name : name.substr(0, dot);
+}
+
+std::string read_text(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError("cannot read " + path + ": " + std::strerror(errno));
+    std::stringstream buffer;
+    buffer << in.rdbuf();
+    return buffer.str();
+}
+
+void read_camera(Scene& scene, const JsonReader& j) {
+    j.allow_only({"position", "look_at", "up", "vfov", "lens_radius", "focal_distance", "near_clip", "far_clip"});
+    Camera& c = scene.camera;
+    c.position = j.vec3("position");
+    c.look_at = j.vec3("look_at");
+    c.up = j.vec3("up", Vec3(0, 1, 0));
+    if (!(c.up.norm() > 0)) j.fail("up", "expected a non-zero vector");
+    c.vfov = j.number("vfov", 45.0);
+    if (!(c.vfov > 0 && c.vfov < 180)) j.fail("vfov", "expected an angle in (0, 180) degrees");
+    c.lens_radius = j.number_in("lens_radius", 0, 1e300, 0);
+    c.focal_distance = j.number_in("focal_distance", 0, 1e300, 0);
+    c.near_clip = j.number_in("near_clip", 0, 1e300, 0);
+    c.far_clip = j.number_in("far_clip", 0, 1e300, 1e300);
+    if (c.far_clip <= c.near_clip) j.fail("far_clip", "expected far_clip > near_clip");
+}
+
+Material read_material(const std::string& name, const JsonReader& j) {
+    Material m;
+    m.name = name;
+    std::string type = j.string("type");
+    if (type == "diffuse") {
+        j.allow_only({"type", "albedo", "emission"});
+        m.type = MaterialType::diffuse;
+        m.albedo = j.color("albedo", m.albedo, 1.0);
+    } else if (type == "mirror") {
+        j.allow_only({"type", "reflectance", "emission"});
+        m.type = MaterialType::mirror;
+        m.reflectance = j.color("reflectance", m.reflectance, 1.0);
+    } else if (type == "glass") {
+        j.allow_only({"type", "ior", "reflectance", "transmittance", "emission"});
+        m.type = MaterialType::glass;
+        m.ior = j.positive("ior", 1.5);
+        m.reflectance = j.color("reflectance", m.reflectance, 1.0);
+        m.transmittance = j.color("transmittance", m.transmittance, 1.0);
+    } else {
+        j.fail("type", "unknown material type \"" + type + "\" (expected diffuse, mirror or glass)");
+    }
+    m.emission = j.color("emission", Color(0));
+    return m;
+}
+
+Transform read_transform(const JsonReader& j) {
+    j.allow_only({"scale", "rotate", "translate"});
+    Transform t;
+    if (j.has("scale")) {
+        // A number scales uniformly; three numbers scale per axis.
+        if (j.is_array("scale")) {
+            t.scale = j.vec3("scale");
+            if (!(t.scale.x > 0 && t.scale.y > 0 && t.scale.z > 0))
+                j.fail("scale", "expected a number > 0 or three numbers > 0");
+        } else {
+            t.scale = Vec3(j.positive("scale"));
+        }
+    }
+    if (j.has("rotate")) {
+        std::vector<double> r = j.numbers("rotate", 4);
+        Vec3 axis(r[0], r[1], r[2]);
+        if (!(axis.norm() > 0)) j.fail("rotate", "expected [x, y, z, degrees] with a non-zero axis");
+        t.set_rotation(axis, r[3]);
+    }
+    t.translate = j.vec3("translate", Vec3(0));
+    return t;
+}
+
+class SceneBuilder {
+public:
+    SceneBuilder(Scene& scene, const std::string& path) : scene_(scene), path_(path) {}
+
+    void read_materials(const JsonReader& root) {
+        if (!root.has("materials")) return;
+        for (const auto& [name, j] : root.object_map("materials")) {
+            material_index_[name] = uint32_t(scene_.materials.size());
+            scene_.materials.push_back(read_material(name, j));
+        }
+    }
+
+    uint32_t material(const JsonReader& j) const {
+        std::string name = j.string("material");
+        auto it = material_index_.find(name);
+        if (it == material_index_.end()) j.fail("material", "no material named \"" + name + "\" in \"materials\"");
+        return it->second;
+    }
+
+    void read_object(const JsonReader& j) {
+        std::string type = j.string("type");
+        Transform transform = j.has("transform") ? read_transform(j.object("transform")) : Transform();
+        if (type == "mesh") {
+            j.allow_only({"type", "file", "material", "transform"});
+            ObjLoadOptions options;
+            options.where = j.file() + ": " + j.path_of("");
+            if (j.has("material")) options.material = material(j);
+            MeshData mesh = read_obj(scene_, resolve(path_, j.string("file")), options);
+            add_mesh(scene_, mesh, transform);
+        } else if (type == "sphere") {
+            j.allow_only({"type", "center", "radius", "material", "transform"});
+            if (!transform.is_uniform_scale()) j.fail("transform", "a sphere needs a uniform scale");
+            SphereRecord s;
+            s.sphere.center = transform.point(j.vec3("center"));
+            s.sphere.radius = j.positive("radius") * transform.scale.x;
+            s.material = material(j);
+            scene_.spheres.push_back(s);
+        } else if (type == "quad") {
+            j.allow_only({"type", "corner", "edge1", "edge2", "material", "transform"});
+            Vec3 c = j.vec3("corner"), e1 = j.vec3("edge1"), e2 = j.vec3("edge2");
+            if (!(cross(e1, e2).norm() > 1e-12 * e1.norm() * e2.norm()))
+                j.fail("", "zero-area quad (edge1 and edge2 must be non-zero and not parallel)");
+            // Two triangles whose geometric normals are both edge1 x edge2.
+            MeshData mesh;
+            mesh.positions = {c, c + e1, c + e1 + e2, c + e2};
+            mesh.faces = {{0, 1, 2}, {0, 2, 3}};
+            mesh.material = material(j);
+            add_mesh(scene_, mesh, transform);
+        } else if (type == "torus_knot") {
+            j.allow_only({"type", "p", "q", "radius", "tube_radius", "segments", "sides", "material", "transform"});
+            MeshData mesh = make_torus_knot(j.integer("p", 1, 64, 2), j.integer("q", 1, 64, 3),
+                                            j.positive("radius", 1.0), j.positive("tube_radius", 0.15),
+                                            j.integer("segments", 3, 1 << 22, 500), j.integer("sides", 3, 1 << 16, 10));
+            mesh.material = material(j);
+            add_mesh(scene_, mesh, transform);
+        } else {
+            j.fail("type", "unknown object type \"" + type + "\" (expected mesh, sphere, quad or torus_knot)");
+        }
+    }
+
+    void read_light(const JsonReader& j) {
+        std::string type = j.string("type");
+        if (type == "point") {
+            j.allow_only({"type", "position", "intensity"});
+            scene_.point_lights.push_back({j.vec3("position"), j.color("intensity", Color(1))});
+        } else if (type == "directional") {
+            j.allow_only({"type", "direction", "irradiance"});
+            Vec3 d = j.vec3("direction");
+            if (!(d.norm() > 0)) j.fail("direction", "expected a non-zero vector");
+            scene_.directional_lights.push_back({d.unit(), j.color("irradiance", Color(1))});
+        } else if (type == "environment") {
+            j.allow_only({"type", "radiance", "file", "scale"});
+            if (scene_.environment) j.fail("", "a scene has at most one environment light");
+            EnvironmentLight env;
+            env.radiance = j.color("radiance", Color(1));
+            if (j.has("file")) {
+                env.file = resolve(path_, j.string("file"));
+                std::string ext = file_extension(env.file);
+                if (ext != ".hdr" && ext != ".pfm") j.fail("file", "expected a .hdr or .pfm lat-long map");
+                std::ifstream probe(env.file);
+                if (!probe) j.fail("file", "cannot read " + env.file + ": " + std::strerror(errno));
+            }
+            env.scale = j.positive("scale", 1.0);
+            scene_.environment = env;
+        } else {
+            j.fail("type", "unknown light type \"" + type + "\" (expected point, directional or environment)");
+        }
+    }
+
+private:
+    Scene& scene_;
+    const std::string& path_;
+    std::map<std::string, uint32_t> material_index_;
+};
+
+}  // namespace
+
+void frame_camera_on(Camera& camera, const BBox& bounds) {
+    Vec3 center = bounds.centroid();
+    double radius = std::max(0.5 * bounds.extent().norm(), 1e-6);
+    // Fit the bounding sphere in the smaller of the two fields of view,
+    // looking from the front (+z) and a little above, as mesh viewers do.
+    double half_fov = radians(camera.vfov) * 0.5;
+    if (camera.aspect < 1) half_fov = std::atan(camera.aspect * std::tan(half_fov));
+    double distance = radius / std::sin(half_fov);
+    Vec3 direction = Vec3(0.0, 0.25, 1.0).unit();
+    camera.look_at = center;
+    camera.position = center + direction * distance;
+    camera.up = Vec3(0, 1, 0);
+    camera.focal_distance = 0;
+}
+
+Scene parse_json_scene(const std::string& text, const std::string& path) {
+    nlohmann::json root_json;
+    try {
+        root_json = nlohmann::json::parse(text);
+    } catch (const nlohmann::json::parse_error& e) {
+        // nlohmann's message already carries "at line L, column C".
+        std::string what = e.what();
+        size_t colon = what.find(": ");
+        throw InputError(path + ": malformed JSON: " + (colon == std::string::npos ? what : what.substr(colon + 2)));
+    }
+    JsonReader root(root_json, path, "");
+    root.allow_only({"description", "camera", "film", "materials", "objects", "lights"});
+
+    Scene scene;
+    scene.path = path;
+    scene.name = stem(path);
+    if (root.has("description")) root.string("description");
+    if (root.has("film")) {
+        JsonReader film = root.object("film");
+        film.allow_only({"width", "height"});
+        scene.film_width = film.integer("width", 1, 1 << 15);
+        scene.film_height = film.integer("height", 1, 1 << 15);
+    }
+    SceneBuilder builder(scene, path);
+    builder.read_materials(root);
+    for (const JsonReader& object : root.object_array("objects")) builder.read_object(object);
+    if (root.has("lights"))
+        for (const JsonReader& light : root.object_array("lights")) builder.read_light(light);
+    scene.finalize();
+
+    scene.camera.aspect = double(scene.film_width) / scene.film_height;
+    if (root.has("camera")) {
+        read_camera(scene, root.object("camera"));
+    } else {
+        if (scene.primitive_count() == 0) root.fail("", "a scene without objects needs a \"camera\"");
+        frame_camera_on(scene.camera, scene.bounds);
+    }
+    scene.camera.finalize(path + ": camera");
+    return scene;
+}
+
+Scene load_json_scene(const std::string& path) { return parse_json_scene(read_text(path), path); }
+
+Scene load_obj_scene(const std::string& path) {
+    Scene scene;
+    scene.path = path;
+    scene.name = stem(path);
+    // Faces without an MTL material get a neutral grey; with no light in the
+    // scene the renderer shows normals anyway (DESIGN.md: no light is added).
+    Material grey;
+    grey.name = "default";
+    scene.materials.push_back(grey);
+    ObjLoadOptions options;
+    options.fallback_material = 0;
+    MeshData mesh = read_obj(scene, path, options);
+    add_mesh(scene, mesh, Transform());
+    scene.finalize();
+    scene.camera.aspect = double(scene.film_width) / scene.film_height;
+    frame_camera_on(scene.camera, scene.bounds);
+    scene.camera.finalize(path + ": camera");
+    return scene;
+}
+
+Scene load_scene(const std::string& path) {
+    std::string ext = file_extension(path);
+    if (ext == ".json") return load_json_scene(path);
+    if (ext == ".obj") return load_obj_scene(path);
+    throw InputError(path + ": unknown scene type '" + ext + "' (expected a .json scene or an .obj mesh)");
+}
+
+}  // namespace pt

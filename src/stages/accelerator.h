@@ -1,0 +1,47 @@
+// Accelerator: answers the two ray queries every integrator needs, closest
+// hit and any hit, over all primitives of a scene. The linear scan here
+// (`--accel none`) tests every primitive; the BVH (stage `bvh`, Part 2)
+// answers the same queries in logarithmic time.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "core/ray.h"
+#include "stages/intersect.h"
+
+namespace pt {
+
+struct Scene;
+
+/// Figures an accelerator reports for tables and --stats.
+struct AcceleratorInfo {
+    std::string name;        ///< "linear", "bvh-sah", ...
+    uint64_t nodes = 0;      ///< BVH nodes; 0 for the linear scan
+    int depth = 0;           ///< deepest leaf; 0 for the linear scan
+    uint64_t bytes = 0;      ///< memory for nodes and primitive references
+};
+
+class Accelerator {
+public:
+    virtual ~Accelerator() = default;
+    /// The closest hit of `ray` within [t_min, t_max] over all primitives,
+    /// with Hit::primitive set; nothing on a miss.
+    virtual std::optional<Hit> intersect(const Ray& ray) const = 0;
+    /// Whether any primitive is hit within [t_min, t_max] (shadow rays); may
+    /// stop at the first hit found.
+    virtual bool occluded(const Ray& ray) const = 0;
+    virtual AcceleratorInfo info() const = 0;
+};
+
+/// One primitive (triangle or sphere) against a ray, through the intersect
+/// stage's functions; sets Hit::primitive.
+std::optional<Hit> intersect_primitive(const Scene& scene, const IntersectStage& stage, uint32_t prim,
+                                       const Ray& ray);
+
+/// Tests every primitive: correct, simple, and O(n) per ray.
+std::unique_ptr<Accelerator> make_linear_scan(const Scene& scene, const IntersectStage& stage);
+
+}  // namespace pt

@@ -1,0 +1,39 @@
+#include "stages/stages.h"
+
+#include "scene/scene.h"
+
+namespace pt {
+namespace {
+
+// Until Part 2's BVH lands, both sides of the bvh stage are the linear scan.
+std::unique_ptr<Accelerator> build_linear(const Scene& scene, const IntersectStage& intersect,
+                                          const AcceleratorSettings&) {
+    return make_linear_scan(scene, intersect);
+}
+
+}  // namespace
+
+Stages make_stages(StageSet student) {
+    Stages s;
+    s.student = student;
+    if (student.contains(Stage::camera)) {
+        s.camera = {student::generate_ray, student::raytrace_pixel};
+    } else {
+        s.camera = {reference::generate_ray, reference::raytrace_pixel};
+    }
+    if (student.contains(Stage::intersect)) {
+        s.intersect = {student::intersect_triangle, student::intersect_sphere};
+    } else {
+        s.intersect = {reference::intersect_triangle, reference::intersect_sphere};
+    }
+    s.bvh = {build_linear};
+    return s;
+}
+
+std::unique_ptr<Accelerator> build_accelerator(const Scene& scene, const Stages& stages,
+                                               const AcceleratorSettings& settings) {
+    if (!settings.use_bvh) return make_linear_scan(scene, stages.intersect);
+    return stages.bvh.build(scene, stages.intersect, settings);
+}
+
+}  // namespace pt

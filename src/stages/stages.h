@@ -1,0 +1,54 @@
+// Stages: the switch between reference and student code, one function
+// table per stage, filled once at start-up (DESIGN.md "The stages and the
+// switch"). Every call from the engine into a staged function goes through
+// this table, so `--student LIST` decides at run time whose code runs.
+//
+// On the all-reference path the table costs nothing measurable: its
+// functions are called per pixel or per shading point, and the one call per
+// primitive test (intersect) is bypassed by the reference accelerators,
+// which call the reference routines directly when `intersect` is not a
+// student stage.
+#pragma once
+
+#include "stages/accelerator.h"
+#include "stages/camera.h"
+#include "stages/intersect.h"
+#include "stages/stage_set.h"
+
+namespace pt {
+
+struct Scene;
+
+/// How the accelerator is built (`--accel`, `--bvh-split`, `--max-leaf`).
+struct AcceleratorSettings {
+    bool use_bvh = true;       ///< false: linear scan (`--accel none`)
+    std::string split = "sah";  ///< sah | median | middle
+    int max_leaf = 4;          ///< at most this many primitives per leaf when a split is possible
+};
+
+using BuildAcceleratorFn = std::unique_ptr<Accelerator> (*)(const Scene& scene,
+                                                            const IntersectStage& intersect,
+                                                            const AcceleratorSettings& settings);
+
+struct BvhStage {
+    /// Builds the scene's BVH; its queries must use `intersect`'s routines.
+    BuildAcceleratorFn build;
+};
+
+struct Stages {
+    StageSet student;  ///< the stages that run student code
+    CameraStage camera;
+    IntersectStage intersect;
+    BvhStage bvh;
+
+    bool is_student(Stage s) const { return student.contains(s); }
+};
+
+/// The function tables with student code for the stages in `student`.
+Stages make_stages(StageSet student);
+
+/// The scene's accelerator: the linear scan for `--accel none`, else the bvh stage's.
+std::unique_ptr<Accelerator> build_accelerator(const Scene& scene, const Stages& stages,
+                                               const AcceleratorSettings& settings);
+
+}  // namespace pt
