@@ -21,7 +21,7 @@ long long to_integer(const std::string& flag, const std::string& text, long long
         std::ostringstream s;
         s << flag << ": expected a whole number";
         if (hi == lo) s << " equal to " << lo;
-        else if (hi >= (1ll << 40)) s << " >= " << lo;
+        else if (hi >= (1ll << 30)) s << " >= " << lo;
         else s << " in [" << lo << ", " << hi << "]";
         s << ", got '" << text << "'";
         throw InputError(s.str());

@@ -224,8 +224,9 @@ Scene parse_json_scene(const std::string& text, const std::string& path) {
     nlohmann::json root_json;
     try {
         root_json = nlohmann::json::parse(text);
-    } catch (const nlohmann::json::parse_error& e) {
-        // nlohmann's message already carries "at line L, column C".
+    } catch (const nlohmann::json::exception& e) {
+        // Syntax errors and number overflow (1e999); nlohmann's message
+        // already carries "at line L, column C" where it applies.
         std::string what = e.what();
         size_t colon = what.find(": ");
         throw InputError(path + ": malformed JSON: " + (colon == std::string::npos ? what : what.substr(colon + 2)));
