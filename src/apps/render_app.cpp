@@ -16,6 +16,7 @@
 #include "render/integrator.h"
 #include "render/render_context.h"
 #include "render/renderer.h"
+#include "render/sample_rate_image.h"
 #include "scene/effects.h"
 #include "scene/scene_loader.h"
 
@@ -78,7 +79,10 @@ void write_stats(const std::string& path, const std::string& program, const Opti
     j["program"] = program;
     j["scene"] = scene.path;
     j["resolution"] = {scene.film_width, scene.film_height};
-    j["spp"] = options.render.spp;
+    double pixels = double(options.cell ? uint64_t(options.cell->width) * options.cell->height
+                                        : uint64_t(scene.film_width) * scene.film_height);
+    j["spp"] = double(result.counters.camera_rays) / pixels;  // measured mean (less than -s with -a)
+    j["spp_max"] = options.render.spp;
     j["threads"] = options.threads;
     j["seed"] = options.render.seed;
     j["student_stages"] = options.student.to_string();
@@ -95,6 +99,20 @@ void write_stats(const std::string& path, const std::string& program, const Opti
     j["primitives"] = {{"triangles", scene.triangles.size()}, {"spheres", scene.spheres.size()},
                        {"emitters", scene.emitters.size()}};
     j["accelerator"] = {{"name", accel.name}, {"nodes", accel.nodes}, {"depth", accel.depth}, {"bytes", accel.bytes}};
+    if (options.render.adaptive) {
+        // Per-pixel sample counts, row by row from the top (adaptive sampling only).
+        const std::vector<uint32_t>& counts = result.sample_counts;
+        uint64_t total = 0;
+        for (uint32_t n : counts) total += n;
+        nlohmann::json rows = nlohmann::json::array();
+        for (int y = 0; y < scene.film_height; ++y)
+            rows.push_back(std::vector<uint32_t>(counts.begin() + long(y) * scene.film_width,
+                                                 counts.begin() + long(y + 1) * scene.film_width));
+        j["adaptive"] = {{"samples_per_batch", options.render.samples_per_batch},
+                         {"max_tolerance", options.render.max_tolerance},
+                         {"mean_spp", double(total) / double(std::max<size_t>(counts.size(), 1))},
+                         {"sample_counts", rows}};
+    }
     std::ofstream out(path);
     if (!out) throw InputError("--stats: cannot write " + path);
     out << j.dump(2) << "\n";
@@ -121,6 +139,8 @@ int run(const std::vector<std::string>& args, const std::string& program, StageS
     std::string reason;
     IntegratorKind kind = choose_integrator(scene, effects, options.render, &reason);
     std::unique_ptr<Integrator> integrator = make_integrator(kind);
+    if (options.student.contains(Stage::adaptive) && !options.render.adaptive)
+        std::cout << program << ": note: adaptive sampling is off; add -a N TOL to run your has_converged\n";
     std::cout << program << ": " << scene.path << ": " << scene.triangles.size() << " triangles, "
               << scene.spheres.size() << " spheres, " << scene.emitters.size() << " emitters\n"
               << program << ": student stages: " << options.student.to_string() << "\n"
@@ -141,6 +161,13 @@ int run(const std::vector<std::string>& args, const std::string& program, StageS
 
     write_png(result.image, options.output);
     if (!options.hdr_output.empty()) write_pfm(result.image, options.hdr_output);
+    std::string written = options.output;
+    if (options.render.adaptive) {
+        std::string rate_path = rate_image_path(options.output);
+        write_png(make_sample_rate_image(result.sample_counts, scene.film_width, scene.film_height), rate_path);
+        written += ", " + rate_path;
+    }
+    if (!options.hdr_output.empty()) written += ", " + options.hdr_output;
     AcceleratorInfo accel_info = accelerator->info();
     if (!options.stats_output.empty())
         write_stats(options.stats_output, program, options, scene, effects, kind, accel_info, result, seconds);
@@ -148,11 +175,12 @@ int run(const std::vector<std::string>& args, const std::string& program, StageS
     const RayCounters& c = result.counters;
     double rays = double(std::max<uint64_t>(c.rays(), 1));
     char line[256];
-    std::snprintf(line, sizeof line, "%dx%d, %d spp, %.2f s, %.2f Mrays/s, %.1f tests/ray", scene.film_width,
-                  scene.film_height, options.render.spp, seconds.render,
+    double pixels = double(options.cell ? uint64_t(options.cell->width) * options.cell->height
+                                        : uint64_t(scene.film_width) * scene.film_height);
+    std::snprintf(line, sizeof line, "%dx%d, %.4g spp, %.2f s, %.2f Mrays/s, %.1f tests/ray", scene.film_width,
+                  scene.film_height, c.camera_rays / pixels, seconds.render,
                   seconds.render > 0 ? c.rays() / seconds.render * 1e-6 : 0.0, c.primitive_tests / rays);
-    std::cout << program << ": wrote " << options.output << (options.hdr_output.empty() ? "" : " and " + options.hdr_output)
-              << "\n" << program << ": " << line << "\n";
+    std::cout << program << ": wrote " << written << "\n" << program << ": " << line << "\n";
     if (c.nonfinite_samples > 0)
         std::cout << program << ": warning: " << c.nonfinite_samples << " NaN/Inf samples were dropped\n";
     return kExitOk;

@@ -29,6 +29,7 @@ PixelResult raytrace_pixel(const RenderContext& context, int x, int y) {
     const Scene& scene = context.scene;
     const uint64_t pixel = uint64_t(y) * uint64_t(scene.film_width) + uint64_t(x);
     Color sum;
+    PixelStatistics stats;  // of the samples' illuminance, for adaptive sampling
     int n = 0;
     for (int i = 0; i < settings.spp; ++i) {
         // One generator per (seed, pixel, sample): the image does not depend
@@ -47,6 +48,14 @@ PixelResult raytrace_pixel(const RenderContext& context, int x, int y) {
         }
         sum += L;
         ++n;
+        double illuminance = L.luminance();
+        stats.s1 += illuminance;
+        stats.s2 += illuminance * illuminance;
+        stats.n = n;
+        // Adaptive sampling (Part 5): test for convergence after each batch.
+        if (settings.adaptive && n % settings.samples_per_batch == 0 &&
+            context.stages.adaptive.has_converged(stats, settings.max_tolerance))
+            break;
     }
     return {sum / double(n), n};
 }

@@ -27,6 +27,7 @@ Stages make_stages(StageSet student) {
         s.intersect = {reference::intersect_triangle, reference::intersect_sphere};
     }
     s.bvh = {build_linear};
+    s.adaptive = {student.contains(Stage::adaptive) ? student::has_converged : reference::has_converged};
     return s;
 }
 

@@ -11,6 +11,7 @@
 #pragma once
 
 #include "stages/accelerator.h"
+#include "stages/adaptive.h"
 #include "stages/camera.h"
 #include "stages/intersect.h"
 #include "stages/stage_set.h"
@@ -40,6 +41,7 @@ struct Stages {
     CameraStage camera;
     IntersectStage intersect;
     BvhStage bvh;
+    AdaptiveStage adaptive;
 
     bool is_student(Stage s) const { return student.contains(s); }
 };
