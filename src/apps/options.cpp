@@ -80,6 +80,8 @@ std::vector<FlagSpec> flag_table() {
         {{"-r"}, 2, [](Options& o, S f, V v) {
              o.resolution = {int(to_integer(f + " (width)", v[0], 1, 1 << 15)),
                              int(to_integer(f + " (height)", v[1], 1, 1 << 15))};
+             if (double(o.resolution->first) * o.resolution->second > double(1 << 26))
+                 throw InputError(f + ": width * height must be at most 67108864 pixels");
          }},
         {{"-p"}, 4, [](Options& o, S f, V v) {
              o.cell = PixelRect{int(to_integer(f + " (x)", v[0], 0, 1 << 15)), int(to_integer(f + " (y)", v[1], 0, 1 << 15)),

@@ -10,6 +10,7 @@
 
 #include "apps/options.h"
 #include "core/error.h"
+#include "core/files.h"
 #include "core/progress.h"
 #include "core/timer.h"
 #include "image/image_io.h"
@@ -47,8 +48,7 @@ void apply_scene_overrides(Scene& scene, const Options& options) {
     if (options.lens_radius) scene.camera.lens_radius = *options.lens_radius;
     if (options.focal_distance) scene.camera.focal_distance = *options.focal_distance;
     if (!options.environment_map.empty()) {
-        std::ifstream probe(options.environment_map);
-        if (!probe) throw InputError("-e: cannot read " + options.environment_map);
+        require_readable_file(options.environment_map, "-e");
         std::string ext = file_extension(options.environment_map);
         if (ext != ".hdr" && ext != ".pfm")
             throw InputError("-e: expected a .hdr or .pfm lat-long map, got '" + options.environment_map + "'");

@@ -9,15 +9,11 @@
 #include <map>
 
 #include "core/error.h"
+#include "core/files.h"
 #include "scene/scene.h"
 
 namespace pt {
 namespace {
-
-std::string directory_of(const std::string& path) {
-    size_t slash = path.find_last_of('/');
-    return slash == std::string::npos ? "./" : path.substr(0, slash + 1);
-}
 
 std::string base_name(const std::string& path) {
     size_t slash = path.find_last_of('/');
@@ -52,16 +48,13 @@ void check_material(const Material& m, const std::string& where) {
 
 MeshData read_obj(Scene& scene, const std::string& path, const ObjLoadOptions& options) {
     const std::string where = options.where.empty() ? path : options.where + " (" + path + ")";
-    {
-        std::ifstream probe(path);
-        if (!probe) throw InputError(where + ": cannot read mesh: " + std::strerror(errno));
-    }
+    require_readable_file(path, options.where.empty() ? std::string("mesh") : options.where);
     tinyobj::attrib_t attrib;
     std::vector<tinyobj::shape_t> shapes;
     std::vector<tinyobj::material_t> materials;
     std::string warn, err;
     bool ok = tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, path.c_str(),
-                               directory_of(path).c_str(), /*triangulate=*/true);
+                               (directory_of(path).empty() ? std::string("./") : directory_of(path)).c_str(), /*triangulate=*/true);
     if (!ok) throw InputError(where + ": not a readable OBJ file: " + (err.empty() ? warn : err));
     // tinyobjloader only warns about a missing material library; a scene
     // whose colours silently vanish is worse than an error.

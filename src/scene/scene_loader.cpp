@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "core/files.h"
 #include "core/math.h"
 #include "image/image_io.h"
 #include "scene/json_reader.h"
@@ -19,10 +20,9 @@
 namespace pt {
 namespace {
 
-std::string directory_of(const std::string& path) {
-    size_t slash = path.find_last_of('/');
-    return slash == std::string::npos ? "" : path.substr(0, slash + 1);
-}
+/// Limits that keep a typo from asking for terabytes.
+constexpr int kMaxGeneratedTriangles = 1 << 25;  // 33.5 million
+constexpr int kMaxFilmPixels = 1 << 26;          // e.g. 8192 x 8192
 
 std::string resolve(const std::string& scene_path, const std::string& file) {
     if (!file.empty() && file[0] == '/') return file;
@@ -37,6 +37,7 @@ std::string stem(const std::string& path) {
 }
 
 std::string read_text(const std::string& path) {
+    require_readable_file(path, "scene");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError("cannot read " + path + ": " + std::strerror(errno));
     std::stringstream buffer;
@@ -158,9 +159,12 @@ public:
             add_mesh(scene_, mesh, transform);
         } else if (type == "torus_knot") {
             j.allow_only({"type", "p", "q", "radius", "tube_radius", "segments", "sides", "material", "transform"});
+            int segments = j.integer("segments", 3, 1 << 22, 500), sides = j.integer("sides", 3, 1 << 16, 10);
+            if (2.0 * segments * sides > kMaxGeneratedTriangles)
+                j.fail("", "2 * segments * sides must be at most " + std::to_string(kMaxGeneratedTriangles) +
+                               " triangles");
             MeshData mesh = make_torus_knot(j.integer("p", 1, 64, 2), j.integer("q", 1, 64, 3),
-                                            j.positive("radius", 1.0), j.positive("tube_radius", 0.15),
-                                            j.integer("segments", 3, 1 << 22, 500), j.integer("sides", 3, 1 << 16, 10));
+                                            j.positive("radius", 1.0), j.positive("tube_radius", 0.15), segments, sides);
             mesh.material = material(j);
             add_mesh(scene_, mesh, transform);
         } else {
@@ -187,8 +191,7 @@ public:
                 env.file = resolve(path_, j.string("file"));
                 std::string ext = file_extension(env.file);
                 if (ext != ".hdr" && ext != ".pfm") j.fail("file", "expected a .hdr or .pfm lat-long map");
-                std::ifstream probe(env.file);
-                if (!probe) j.fail("file", "cannot read " + env.file + ": " + std::strerror(errno));
+                require_readable_file(env.file, j.file() + ": " + j.path_of("file"));
             }
             env.scale = j.positive("scale", 1.0);
             scene_.environment = env;
@@ -243,6 +246,8 @@ Scene parse_json_scene(const std::string& text, const std::string& path) {
         film.allow_only({"width", "height"});
         scene.film_width = film.integer("width", 1, 1 << 15);
         scene.film_height = film.integer("height", 1, 1 << 15);
+        if (double(scene.film_width) * scene.film_height > kMaxFilmPixels)
+            film.fail("", "width * height must be at most " + std::to_string(kMaxFilmPixels) + " pixels");
     }
     SceneBuilder builder(scene, path);
     builder.read_materials(root);

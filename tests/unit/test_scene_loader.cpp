@@ -146,7 +146,8 @@ TEST_CASE("mesh objects: OBJ with MTL, a material override, and bad OBJ files") 
         std::string object, expected;
     };
     const Case cases[] = {
-        {R"({"type": "mesh", "file": "absent.obj"})", "cannot read mesh"},
+        {R"({"type": "mesh", "file": "absent.obj"})", "objects[0]: cannot read"},
+        {R"({"type": "mesh", "file": "/dev/zero"})", "not a regular file"},
         {R"({"type": "mesh", "file": "nomtl.obj"})", "have no material"},
         {R"({"type": "mesh", "file": "missing_mtl.obj"})", "not found"},
         {R"({"type": "mesh", "file": "empty.obj", "material": "white"})", "the mesh has no faces"},
