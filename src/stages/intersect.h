@@ -53,6 +53,11 @@ struct IntersectStage {
 namespace reference {
 std::optional<Hit> intersect_triangle(const Triangle& triangle, const Ray& ray);
 std::optional<Hit> intersect_sphere(const Sphere& sphere, const Ray& ray);
+/// The same contract as intersect_triangle, computed with the watertight
+/// test of Woop, Benthin and Wald (JCGT 2013): a ray through a shared
+/// edge or vertex of a closed mesh always hits one of its triangles
+/// (`--triangle watertight`; see stages/intersect_watertight.cpp).
+std::optional<Hit> intersect_triangle_watertight(const Triangle& triangle, const Ray& ray);
 }  // namespace reference
 
 namespace student {
