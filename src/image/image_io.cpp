@@ -63,11 +63,21 @@ void write_pfm(const Image& image, const std::string& path) {
             throw InputError("cannot write " + path + ": " + system_reason());
 }
 
+void write_hdr(const Image& image, const std::string& path) {
+    check_writable(image, path);
+    std::FILE* probe = std::fopen(path.c_str(), "wb");
+    if (!probe) throw InputError("cannot write " + path + ": " + system_reason());
+    std::fclose(probe);
+    if (!stbi_write_hdr(path.c_str(), image.width(), image.height(), 3, image.data().data()))
+        throw InputError("cannot write " + path + ": HDR encoder failed");
+}
+
 void write_image(const Image& image, const std::string& path) {
     std::string ext = file_extension(path);
     if (ext == ".png") return write_png(image, path);
     if (ext == ".pfm") return write_pfm(image, path);
-    throw InputError(path + ": unknown image type '" + ext + "' (expected .png or .pfm)");
+    if (ext == ".hdr") return write_hdr(image, path);
+    throw InputError(path + ": unknown image type '" + ext + "' (expected .png, .pfm or .hdr)");
 }
 
 Image read_png(const std::string& path) {

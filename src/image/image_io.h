@@ -4,7 +4,7 @@
 //   PFM  32-bit float, linear, no clamping: what metrics should compare.
 //        Portable Float Map, "PF" header, little-endian (negative scale),
 //        rows stored bottom to top (Debevec's HDRShop convention).
-//   HDR  Radiance RGBE, read only (environment maps), via stb_image.
+//   HDR  Radiance RGBE (environment maps), via stb_image and stb_image_write.
 //
 // Every failure throws InputError naming the file and the reason.
 #pragma once
@@ -17,7 +17,8 @@ namespace pt {
 
 void write_png(const Image& image, const std::string& path);
 void write_pfm(const Image& image, const std::string& path);
-/// Writes PNG or PFM according to the extension of `path`.
+void write_hdr(const Image& image, const std::string& path);  ///< Radiance RGBE
+/// Writes PNG, PFM or HDR according to the extension of `path`.
 void write_image(const Image& image, const std::string& path);
 
 Image read_png(const std::string& path);  ///< decodes sRGB to linear
