@@ -12,6 +12,7 @@
 
 #include "stages/accelerator.h"
 #include "stages/camera.h"
+#include "stages/direct.h"
 #include "stages/intersect.h"
 #include "stages/stage_set.h"
 
@@ -40,6 +41,7 @@ struct Stages {
     CameraStage camera;
     IntersectStage intersect;
     BvhStage bvh;
+    DirectStage direct;
 
     bool is_student(Stage s) const { return student.contains(s); }
 };
