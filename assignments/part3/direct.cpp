@@ -39,8 +39,9 @@ Color estimate_direct_lighting_hemisphere(const RenderContext& context, const Ra
     // TODO(part3.4): uniform hemisphere sampling. With the BSDF from
     // context.bsdf_at(isect) (return black if bsdf.is_delta()), take
     // N = context.settings.light_samples * context.lights.non_delta_count()
-    // directions wi = sample_uniform_hemisphere(rng.next_2d()) (local frame,
-    // pdf = uniform_hemisphere_pdf()). For each, trace isect.spawn_ray of its
+    // directions (return black if N is 0: no light can be hit) wi =
+    // sample_uniform_hemisphere(rng.next_2d()) (local frame, pdf =
+    // uniform_hemisphere_pdf()). For each, trace isect.spawn_ray of its
     // world direction; the light arriving is zero_bounce_radiance of what it
     // hits, or context.lights.environment_radiance on a miss. Return
     // 1/N sum f(wo, wi) Li cos(theta) / pdf.

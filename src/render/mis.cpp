@@ -24,8 +24,10 @@ Color sample_lights_mis(const RenderContext& context, const SurfaceInteraction& 
             if (f.is_black()) continue;
             // The shadow ray last: it is the expensive part.
             if (context.occluded(isect.spawn_ray_to(s.p))) continue;
-            double weight =
-                s.is_delta ? 1.0 : power_heuristic(n, s.pdf, bsdf_samples, bsdf.pdf(wo, wi));
+            // No BSDF sample can find a delta light; without BSDF samples the weight is 1.
+            double weight = s.is_delta || bsdf_samples == 0
+                                ? 1.0
+                                : power_heuristic(n, s.pdf, bsdf_samples, bsdf.pdf(wo, wi));
             sum += f * s.L * (weight * wi.z / s.pdf);
         }
         L += sum / double(n);
