@@ -14,6 +14,7 @@
 
 #include <cmath>
 
+#include "core/frame.h"
 #include "core/math.h"
 #include "core/vec3.h"
 
@@ -138,17 +139,12 @@ inline SphereCapSample sample_sphere_cap(Vec2 u, const Vec3& center, double radi
     double cos_phi = sin_theta > 0 ? local.x / sin_theta : 1.0;
     double sin_phi = sin_theta > 0 ? local.y / sin_theta : 0.0;
 
-    // Any orthonormal frame about the axis will do (same construction as core/frame.h).
-    double sign = std::copysign(1.0, axis.z);
-    double a = -1.0 / (sign + axis.z);
-    double b = axis.x * axis.y * a;
-    Vec3 t1(1.0 + sign * axis.x * axis.x * a, sign * b, -sign * axis.x);
-    Vec3 t2(b, sign + axis.y * axis.y * a, -axis.y);
-
-    s.n = t1 * (sin_alpha * cos_phi) + t2 * (sin_alpha * sin_phi) - axis * cos_alpha;
+    // Any orthonormal frame about the axis will do.
+    Frame frame(axis);
+    s.n = frame.to_world(Vec3(sin_alpha * cos_phi, sin_alpha * sin_phi, -cos_alpha));
     s.n = s.n / s.n.norm();
     s.p = center + s.n * radius;
-    s.wi = t1 * local.x + t2 * local.y + axis * local.z;
+    s.wi = frame.to_world(local);
     s.pdf = uniform_cone_pdf(one_minus_cos_max);
     return s;
 }

@@ -8,7 +8,7 @@
 
 #include "core/ray.h"
 #include "core/sampling.h"
-#include "statistical/chi2.h"
+#include "statistical/chi2_check.h"
 
 using namespace pt;
 using namespace pt::stats;
@@ -16,12 +16,6 @@ using namespace pt::stats;
 namespace {
 
 constexpr int kSamples = 1000000;
-
-void require_pass(const Chi2Result& r) {
-    INFO(r.message);
-    if (std::getenv("PT_CHI2_VERBOSE")) MESSAGE(r.message);
-    CHECK(r.passed);
-}
 
 /// The grid for a cone of half-angle acos(cos_max) about `axis`: the cells cover only the cone.
 DirectionGrid cone_grid(double cos_max, const Vec3& axis = Vec3(0, 0, 1)) {
@@ -38,28 +32,28 @@ const double kAdversarial[] = {0.0, 0.5, 1.0 - 0x1p-24};
 }  // namespace
 
 TEST_CASE("chi2: uniform hemisphere") {
-    require_pass(chi2_sampling_test(
+    check_passes(chi2_sampling_test(
         DirectionGrid{},
         [](Rng& r) { return std::optional<Vec3>(sample_uniform_hemisphere(r.next_2d())); },
         [](const Vec3& w) { return w.z >= 0 ? uniform_hemisphere_pdf() : 0.0; }, kSamples, 11));
 }
 
 TEST_CASE("chi2: cosine hemisphere") {
-    require_pass(chi2_sampling_test(
+    check_passes(chi2_sampling_test(
         DirectionGrid{},
         [](Rng& r) { return std::optional<Vec3>(sample_cosine_hemisphere(r.next_2d())); },
         [](const Vec3& w) { return cosine_hemisphere_pdf(w.z); }, kSamples, 12));
 }
 
 TEST_CASE("chi2: uniform sphere") {
-    require_pass(chi2_sampling_test(
+    check_passes(chi2_sampling_test(
         DirectionGrid{},
         [](Rng& r) { return std::optional<Vec3>(sample_uniform_sphere(r.next_2d())); },
         [](const Vec3&) { return uniform_sphere_pdf(); }, kSamples, 13));
 }
 
 TEST_CASE("chi2: concentric disk") {
-    require_pass(chi2_sampling_test(
+    check_passes(chi2_sampling_test(
         DiskGrid{}, [](Rng& r) { return std::optional<Vec2>(sample_concentric_disk(r.next_2d())); },
         [](const Vec2&) { return kInvPi; }, kSamples, 14));
 }
@@ -67,7 +61,7 @@ TEST_CASE("chi2: concentric disk") {
 TEST_CASE("chi2: uniform cone") {
     SUBCASE("half-angle 60 degrees") {
         double cos_max = 0.5;
-        require_pass(chi2_sampling_test(
+        check_passes(chi2_sampling_test(
             cone_grid(cos_max),
             [&](Rng& r) {
                 return std::optional<Vec3>(sample_uniform_cone(r.next_2d(), 1.0 - cos_max));
@@ -78,7 +72,7 @@ TEST_CASE("chi2: uniform cone") {
         // 1 - cos from sin^2 / (1 + cos), as the sphere light computes it.
         double s = std::sin(radians(1.0)), c = std::cos(radians(1.0));
         double omc = s * s / (1.0 + c);
-        require_pass(chi2_sampling_test(
+        check_passes(chi2_sampling_test(
             cone_grid(c),
             [&](Rng& r) { return std::optional<Vec3>(sample_uniform_cone(r.next_2d(), omc)); },
             [&](const Vec3&) { return uniform_cone_pdf(omc); }, kSamples, 16));
@@ -91,7 +85,7 @@ TEST_CASE("chi2: uniform triangle") {
     grid.triangles = {{Vec3(0, 0, 0), Vec3(3, 0.5, 0), Vec3(1, 2, 1)}};
     const auto& t = grid.triangles[0];
     double area = 0.5 * cross(t.p1 - t.p0, t.p2 - t.p0).norm();
-    require_pass(chi2_sampling_test(
+    check_passes(chi2_sampling_test(
         grid,
         [&](Rng& r) {
             Vec2 b = sample_uniform_triangle(r.next_2d());
@@ -124,7 +118,7 @@ TEST_CASE("chi2: sphere cap") {
             [&](const Vec3&) { return sphere_cap_pdf(center, radius, from); }, kSamples, seed);
         CHECK(off_sphere == 0);
         CHECK(hidden == 0);
-        require_pass(r);
+        check_passes(r);
     };
     SUBCASE("distant") {
         run(Vec3(1, 2, 3), 0.5, Vec3(-2, 0.5, 1), 18);
