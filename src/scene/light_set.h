@@ -92,7 +92,6 @@ class Light {
 class LightSet {
   public:
     /// Builds the lights of `scene` (which must be finalized: Scene::emitters).
-    /// Throws std::runtime_error for a map-based environment, which Part 4 adds.
     explicit LightSet(const Scene& scene);
 
     const std::vector<std::unique_ptr<Light>>& all() const { return lights_; }

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
+#include <utility>
 
 #include "core/frame.h"
 #include "core/math.h"
@@ -213,6 +215,27 @@ class ConstantEnvironmentLight final : public Light {
     FarAway far_;
 };
 
+/// Stands in for a lat-long environment map until Part 4 loads and samples
+/// one: it fails with a clear message when an integrator uses it, so renders
+/// that need no light (normals, depth) still work with -e.
+class EnvironmentMapNotYet final : public Light {
+  public:
+    explicit EnvironmentMapNotYet(std::string file) : file_(std::move(file)) {}
+    LightSample sample_Li(const LightSampleContext&, Vec2) const override { fail(); }
+    double pdf_Li(const LightSampleContext&, const Vec3&, const Vec3&, const Vec3&) const override {
+        fail();
+    }
+    Color Le(const Vec3&) const override { fail(); }
+
+  private:
+    [[noreturn]] void fail() const {
+        throw std::runtime_error("environment map " + file_ +
+                                 ": lat-long environment maps arrive with Part 4; use a constant "
+                                 "\"radiance\" for now");
+    }
+    std::string file_;
+};
+
 }  // namespace
 
 std::unique_ptr<Light> make_triangle_light(const std::vector<Triangle>& triangles,
@@ -233,13 +256,9 @@ std::unique_ptr<Light> make_directional_light(const DirectionalLight& light, con
 }
 
 std::unique_ptr<Light> make_environment_light(const EnvironmentLight& light, const BBox& bounds) {
-    if (!light.file.empty()) {
-        // Part 4: a lat-long map light (importance-sampled by luminance)
-        // implements the same interface and is returned here.
-        throw std::runtime_error("environment map " + light.file +
-                                 ": lat-long environment maps arrive with Part 4; use a constant "
-                                 "\"radiance\" for now");
-    }
+    // Part 4: a lat-long map light (importance-sampled by luminance)
+    // implements the same interface and is returned here for light.file.
+    if (!light.file.empty()) return std::make_unique<EnvironmentMapNotYet>(light.file);
     return std::make_unique<ConstantEnvironmentLight>(light.radiance * light.scale, bounds);
 }
 

@@ -26,8 +26,8 @@ std::unique_ptr<Light> make_point_light(const PointLight& light);
 std::unique_ptr<Light> make_directional_light(const DirectionalLight& light,
                                               const BBox& scene_bounds);
 /// The environment light. Constant radiance now; a lat-long map (light.file)
-/// is Part 4's: this is where it plugs in, and until then it throws
-/// std::runtime_error naming the file.
+/// is Part 4's: this is where it plugs in. Until then the map's light throws
+/// std::runtime_error naming the file as soon as an integrator uses it.
 std::unique_ptr<Light> make_environment_light(const EnvironmentLight& light,
                                               const BBox& scene_bounds);
 
