@@ -27,6 +27,9 @@ std::unique_ptr<Integrator> make_normals_integrator();
 /// Grey level falling linearly from 1 at the nearest point of the scene's
 /// bounding sphere to 0 at its farthest; black on a miss.
 std::unique_ptr<Integrator> make_depth_integrator();
+/// Emission plus direct light at the first hit, through the direct stage
+/// (stages/direct.h; render/direct_integrator.cpp): -m 0 emission only, -m 1 direct light.
+std::unique_ptr<Integrator> make_direct_integrator();
 
 }  // namespace pt
 

@@ -44,6 +44,17 @@ SurfaceInteraction make_interaction(const Scene& scene, const Ray& ray, const Hi
     return si;
 }
 
+RenderContext::RenderContext(const Scene& scene_, const Accelerator& accelerator_,
+                             const Stages& stages_, const RenderSettings& settings_,
+                             const Integrator& integrator_)
+    : owned_lights_(std::make_shared<const LightSet>(scene_)),
+      scene(scene_),
+      accelerator(accelerator_),
+      stages(stages_),
+      settings(settings_),
+      integrator(integrator_),
+      lights(*owned_lights_) {}
+
 std::optional<SurfaceInteraction> RenderContext::intersect(const Ray& ray) const {
     ++thread_counters().closest_hit_rays;
     std::optional<Hit> hit = accelerator.intersect(ray);
@@ -56,6 +67,22 @@ bool RenderContext::occluded(const Ray& ray) const {
     return accelerator.occluded(ray);
 }
 
-Color RenderContext::radiance(const Ray& ray, Rng& rng) const { return integrator.Li(*this, ray, rng); }
+Color RenderContext::radiance(const Ray& ray, Rng& rng) const {
+    return integrator.Li(*this, ray, rng);
+}
+
+BSDF RenderContext::bsdf_at(const SurfaceInteraction& isect) const {
+    const Material& material = *isect.material;
+    Vec3 n = isect.n;
+    if (material.type != MaterialType::glass) {
+        // The side is the geometric normal's (the true surface); the shading
+        // normal, which may disagree near silhouettes of smooth meshes or
+        // when a mesh's vertex normals oppose its winding, is turned into
+        // that hemisphere. Glass keeps its normal: it must know in from out.
+        Vec3 ng = dot(isect.ng, isect.wo) < 0 ? -isect.ng : isect.ng;
+        if (dot(n, ng) < 0) n = -n;
+    }
+    return BSDF(material, Frame(n), {stages.direct.diffuse_f, stages.direct.diffuse_sample_f});
+}
 
 }  // namespace pt

@@ -1,15 +1,19 @@
 // RenderContext: everything a staged function may use while rendering, in
 // one read-only bundle: the scene, its accelerator, the stage tables, the
-// settings and the integrator. Passed by const reference to every stage
-// function (like CS184's PathTracer members), shared by all threads.
+// settings, the integrator and the scene's lights. Passed by const
+// reference to every stage function (like CS184's PathTracer members),
+// shared by all threads.
 #pragma once
 
+#include <memory>
 #include <optional>
 
 #include "core/color.h"
 #include "core/rng.h"
 #include "render/settings.h"
+#include "scene/bsdf.h"
 #include "scene/interaction.h"
+#include "scene/light_set.h"
 #include "scene/scene.h"
 #include "stages/stages.h"
 
@@ -18,11 +22,21 @@ namespace pt {
 class Integrator;
 
 struct RenderContext {
+private:
+    std::shared_ptr<const LightSet> owned_lights_;  ///< first, so `lights` can refer to it
+
+public:
+    /// Builds the scene's lights (LightSet) from `scene`, which must not
+    /// change while the context is in use.
+    RenderContext(const Scene& scene, const Accelerator& accelerator, const Stages& stages,
+                  const RenderSettings& settings, const Integrator& integrator);
+
     const Scene& scene;
     const Accelerator& accelerator;
     const Stages& stages;
     const RenderSettings& settings;
     const Integrator& integrator;
+    const LightSet& lights;  ///< every light of the scene (scene/light_set.h)
 
     /// The closest surface hit by `ray`, or nothing (counted as a closest-hit ray).
     std::optional<SurfaceInteraction> intersect(const Ray& ray) const;
@@ -30,6 +44,12 @@ struct RenderContext {
     bool occluded(const Ray& ray) const;
     /// The integrator's radiance estimate along a camera ray.
     Color radiance(const Ray& ray, Rng& rng) const;
+    /// The BSDF at `isect`: its material in the shading frame of isect.n,
+    /// with the direct stage's diffuse routines (student or reference). For
+    /// two-sided materials (all but glass) the frame's +z is turned to the
+    /// side of the surface that isect.wo leaves from, so wo.z >= 0 on a flat
+    /// surface and a wall is lit the same from both sides.
+    BSDF bsdf_at(const SurfaceInteraction& isect) const;
 };
 
 /// The interaction record for `hit`, found by `ray`: the hit point (from

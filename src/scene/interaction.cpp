@@ -20,12 +20,12 @@ Vec3 offset_ray_origin(const Vec3& p, const Vec3& p_error, const Vec3& ng, const
 }
 
 Ray SurfaceInteraction::spawn_ray(const Vec3& w) const {
-    return Ray(offset_ray_origin(p, p_error, ng, w), w, 0.0, kInfinity, depth + 1);
+    return Ray(offset_ray_origin(p, p_error, ng, w), w, kSpawnTMin, kInfinity, depth + 1);
 }
 
 Ray SurfaceInteraction::spawn_ray_to(const Vec3& target) const {
     Vec3 origin = offset_ray_origin(p, p_error, ng, target - p);
-    return Ray(origin, target - origin, 0.0, 1.0 - kShadowEpsilon, depth + 1);
+    return Ray(origin, target - origin, kSpawnTMin, 1.0 - kShadowEpsilon, depth + 1);
 }
 
 }  // namespace pt

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 
 #include "core/ray.h"
 #include "core/vec3.h"
@@ -40,6 +41,14 @@ struct SurfaceInteraction {
     /// stops just short of the target.
     Ray spawn_ray_to(const Vec3& target) const;
 };
+
+/// t_min of spawned rays: the smallest positive double, so that t = 0 and
+/// t = -0 are misses. A point on a plane at coordinate 0 (the Cornell box's
+/// floor, y = 0) is computed exactly, so its error bound and its offset are
+/// 0 and the ray starts on the plane; Moller-Trumbore then finds that plane
+/// at t = +-0 exactly, which t_min = 0 would count as a hit (every shadow
+/// ray blocked by the surface it leaves).
+constexpr double kSpawnTMin = std::numeric_limits<double>::denorm_min();
 
 /// Fraction of a shadow ray's length left out at its far end, so that it
 /// does not hit the light surface it aims at (pbrt-v3's ShadowEpsilon).

@@ -28,6 +28,21 @@ Stages make_stages(StageSet student) {
     }
     s.bvh = {build_linear};
     s.adaptive = {student.contains(Stage::adaptive) ? student::has_converged : reference::has_converged};
+    if (student.contains(Stage::direct)) {
+        s.direct = {student::diffuse_f,
+                    student::diffuse_sample_f,
+                    student::zero_bounce_radiance,
+                    student::estimate_direct_lighting_hemisphere,
+                    student::estimate_direct_lighting_importance,
+                    student::one_bounce_radiance};
+    } else {
+        s.direct = {reference::diffuse_f,
+                    reference::diffuse_sample_f,
+                    reference::zero_bounce_radiance,
+                    reference::estimate_direct_lighting_hemisphere,
+                    reference::estimate_direct_lighting_importance,
+                    reference::one_bounce_radiance};
+    }
     return s;
 }
 

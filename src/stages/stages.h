@@ -13,6 +13,7 @@
 #include "stages/accelerator.h"
 #include "stages/adaptive.h"
 #include "stages/camera.h"
+#include "stages/direct.h"
 #include "stages/intersect.h"
 #include "stages/stage_set.h"
 
@@ -42,6 +43,7 @@ struct Stages {
     IntersectStage intersect;
     BvhStage bvh;
     AdaptiveStage adaptive;
+    DirectStage direct;
 
     bool is_student(Stage s) const { return student.contains(s); }
 };

@@ -1,0 +1,265 @@
+// Light implementations. See light_set.h for the interface and the change
+// of variables from area to solid angle that every area light applies.
+#include "scene/lights.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "core/frame.h"
+#include "core/math.h"
+#include "core/sampling.h"
+#include "scene/interaction.h"
+
+namespace pt {
+namespace {
+
+/// Where shadow rays towards a light at infinity end: twice the distance
+/// from p to the far side of the scene's bounding sphere, so nothing in the
+/// scene lies beyond it (pbrt-v3 uses 2 * worldRadius the same way).
+struct FarAway {
+    Vec3 center;
+    double radius = 1.0;
+
+    explicit FarAway(const BBox& bounds) {
+        if (bounds.empty()) return;
+        center = bounds.centroid();
+        radius = std::max(0.5 * bounds.extent().norm(), 1e-6);
+    }
+    Vec3 point(const Vec3& p, const Vec3& w) const {
+        return p + w * (2.0 * (radius + (p - center).norm()));
+    }
+};
+
+class TriangleLight final : public Light {
+  public:
+    TriangleLight(const std::vector<Triangle>& triangles, const Color& Le) : Le_(Le) {
+        for (const Triangle& t : triangles) {
+            Vec3 ng = cross(t.p1 - t.p0, t.p2 - t.p0);
+            double twice_area = ng.norm();
+            if (!(twice_area > 0) || !std::isfinite(twice_area)) continue;  // no area, no light
+            triangles_.push_back({t.p0, t.p1, t.p2, ng / twice_area});
+            area_ += 0.5 * twice_area;
+            cdf_.push_back(area_);
+        }
+        for (double& c : cdf_)
+            c /= area_;
+        if (!cdf_.empty()) cdf_.back() = 1.0;
+    }
+
+    LightSample sample_Li(const LightSampleContext& ref, Vec2 u) const override {
+        if (triangles_.empty()) return {};
+        // Pick a triangle with probability area / total area, then reuse what
+        // is left of u.x (rescaled to [0, 1)) to place the point in it: the
+        // product is uniform over the whole light, pdf_A = 1 / area_.
+        size_t k = size_t(std::upper_bound(cdf_.begin(), cdf_.end(), u.x) - cdf_.begin());
+        k = std::min(k, triangles_.size() - 1);
+        double lo = k == 0 ? 0.0 : cdf_[k - 1];
+        double width = cdf_[k] - lo;
+        double ux = width > 0 ? std::min((u.x - lo) / width, 0x1.fffffffffffffp-1) : 0.0;
+        const Tri& t = triangles_[k];
+        Vec2 b = sample_uniform_triangle({ux, u.y});
+        double b0 = 1.0 - b.x - b.y;
+        Vec3 p = b0 * t.p0 + b.x * t.p1 + b.y * t.p2;
+        // Error bound of barycentric interpolation (pbrt-v3 section 3.9.3).
+        Vec3 p_error = gamma(7) * (abs(b0 * t.p0) + abs(b.x * t.p1) + abs(b.y * t.p2));
+
+        Vec3 d = p - ref.p;
+        double r2 = d.norm2();
+        if (!(r2 > 0)) return {};  // the shading point is on the light
+        Vec3 wi = d / std::sqrt(r2);
+        double cos_light = -dot(t.n, wi);
+        if (!(cos_light > 0)) return {};  // the back of a one-sided light, or edge-on
+        LightSample s;
+        s.pdf = r2 / (cos_light * area_);  // pdf_A = 1 / area, to solid angle
+        if (!std::isfinite(s.pdf)) return {};
+        s.L = Le_;
+        s.wi = wi;
+        s.p = offset_ray_origin(p, p_error, t.n, -d);
+        return s;
+    }
+
+    double pdf_Li(const LightSampleContext& ref, const Vec3& wi, const Vec3& p_light,
+                  const Vec3& n_light) const override {
+        double cos_light = -dot(n_light, wi);
+        if (!(cos_light > 0) || !(area_ > 0)) return 0.0;
+        double pdf = (p_light - ref.p).norm2() / (cos_light * area_);
+        return std::isfinite(pdf) ? pdf : 0.0;
+    }
+
+  private:
+    struct Tri {
+        Vec3 p0, p1, p2;  ///< corners, world space
+        Vec3 n;           ///< unit geometric normal, the emitting side
+    };
+    std::vector<Tri> triangles_;
+    std::vector<double> cdf_;  ///< cumulative area fractions; the last is 1
+    double area_ = 0;          ///< total area, scene units^2
+    Color Le_;                 ///< emitted radiance, W/(m^2 sr)
+};
+
+class SphereLight final : public Light {
+  public:
+    SphereLight(const Sphere& sphere, const Color& Le) : sphere_(sphere), Le_(Le) {}
+
+    LightSample sample_Li(const LightSampleContext& ref, Vec2 u) const override {
+        SphereCapSample c = sample_sphere_cap(u, sphere_.center, sphere_.radius, ref.p);
+        if (!(c.pdf > 0) || !std::isfinite(c.pdf)) return {};  // inside: it emits outwards only
+        LightSample s;
+        s.L = Le_;
+        s.wi = c.wi;
+        s.pdf = c.pdf;
+        // The point is centre + radius * n: a few roundings of |p| (pbrt-v3 section 3.9.4).
+        Vec3 p_error = gamma(6) * (abs(c.p) + abs(sphere_.center));
+        s.p = offset_ray_origin(c.p, p_error, c.n, ref.p - c.p);
+        return s;
+    }
+
+    double pdf_Li(const LightSampleContext& ref, const Vec3&, const Vec3&,
+                  const Vec3&) const override {
+        return sphere_cap_pdf(sphere_.center, sphere_.radius, ref.p);
+    }
+
+  private:
+    Sphere sphere_;
+    Color Le_;  ///< emitted radiance, W/(m^2 sr)
+};
+
+class PointLightSource final : public Light {
+  public:
+    explicit PointLightSource(const PointLight& light) : light_(light) {}
+
+    LightSample sample_Li(const LightSampleContext& ref, Vec2) const override {
+        Vec3 d = light_.position - ref.p;
+        double r2 = d.norm2();
+        LightSample s;
+        s.L = light_.intensity / r2;  // inverse-square law: E = I / r^2 at normal incidence
+        if (!(r2 > 0) || !s.L.is_finite()) return {};
+        s.wi = d / std::sqrt(r2);
+        s.pdf = 1.0;
+        s.p = light_.position;  // nothing to offset: a point is not a surface
+        s.is_delta = true;
+        return s;
+    }
+    double pdf_Li(const LightSampleContext&, const Vec3&, const Vec3&, const Vec3&) const override {
+        return 0.0;
+    }
+    bool is_delta() const override { return true; }
+
+  private:
+    PointLight light_;
+};
+
+class DirectionalLightSource final : public Light {
+  public:
+    DirectionalLightSource(const DirectionalLight& light, const BBox& bounds)
+        : light_(light), far_(bounds) {}
+
+    LightSample sample_Li(const LightSampleContext& ref, Vec2) const override {
+        LightSample s;
+        s.L = light_.irradiance;
+        s.wi = -light_.direction;
+        s.pdf = 1.0;
+        s.p = far_.point(ref.p, s.wi);
+        s.is_delta = true;
+        return s;
+    }
+    double pdf_Li(const LightSampleContext&, const Vec3&, const Vec3&, const Vec3&) const override {
+        return 0.0;
+    }
+    bool is_delta() const override { return true; }
+
+  private:
+    DirectionalLight light_;
+    FarAway far_;
+};
+
+/// Constant radiance from every direction. Sampled cosine-weighted about the
+/// shading normal: for a Lambertian surface f cos / pdf is then constant,
+/// so an unoccluded diffuse point gets albedo * L with zero variance. With
+/// no normal (ref.n = 0), uniformly over the sphere.
+class ConstantEnvironmentLight final : public Light {
+  public:
+    ConstantEnvironmentLight(const Color& radiance, const BBox& bounds)
+        : radiance_(radiance), far_(bounds) {}
+
+    LightSample sample_Li(const LightSampleContext& ref, Vec2 u) const override {
+        LightSample s;
+        if (ref.n.norm2() > 0) {
+            Frame frame(ref.n);
+            Vec3 local = sample_cosine_hemisphere(u);
+            s.pdf = cosine_hemisphere_pdf(local.z);
+            s.wi = frame.to_world(local);
+        } else {
+            s.wi = sample_uniform_sphere(u);
+            s.pdf = uniform_sphere_pdf();
+        }
+        if (!(s.pdf > 0)) return {};
+        s.L = radiance_;
+        s.p = far_.point(ref.p, s.wi);
+        return s;
+    }
+
+    double pdf_Li(const LightSampleContext& ref, const Vec3& wi, const Vec3&,
+                  const Vec3&) const override {
+        if (ref.n.norm2() > 0) return cosine_hemisphere_pdf(dot(ref.n, wi));
+        return uniform_sphere_pdf();
+    }
+
+    Color Le(const Vec3&) const override { return radiance_; }
+
+  private:
+    Color radiance_;  ///< W/(m^2 sr), the same from every direction
+    FarAway far_;
+};
+
+/// Stands in for a lat-long environment map until Part 4 loads and samples
+/// one: it fails with a clear message when an integrator uses it, so renders
+/// that need no light (normals, depth) still work with -e.
+class EnvironmentMapNotYet final : public Light {
+  public:
+    explicit EnvironmentMapNotYet(std::string file) : file_(std::move(file)) {}
+    LightSample sample_Li(const LightSampleContext&, Vec2) const override { fail(); }
+    double pdf_Li(const LightSampleContext&, const Vec3&, const Vec3&, const Vec3&) const override {
+        fail();
+    }
+    Color Le(const Vec3&) const override { fail(); }
+
+  private:
+    [[noreturn]] void fail() const {
+        throw std::runtime_error("environment map " + file_ +
+                                 ": lat-long environment maps arrive with Part 4; use a constant "
+                                 "\"radiance\" for now");
+    }
+    std::string file_;
+};
+
+}  // namespace
+
+std::unique_ptr<Light> make_triangle_light(const std::vector<Triangle>& triangles,
+                                           const Color& Le) {
+    return std::make_unique<TriangleLight>(triangles, Le);
+}
+
+std::unique_ptr<Light> make_sphere_light(const Sphere& sphere, const Color& Le) {
+    return std::make_unique<SphereLight>(sphere, Le);
+}
+
+std::unique_ptr<Light> make_point_light(const PointLight& light) {
+    return std::make_unique<PointLightSource>(light);
+}
+
+std::unique_ptr<Light> make_directional_light(const DirectionalLight& light, const BBox& bounds) {
+    return std::make_unique<DirectionalLightSource>(light, bounds);
+}
+
+std::unique_ptr<Light> make_environment_light(const EnvironmentLight& light, const BBox& bounds) {
+    // Part 4: a lat-long map light (importance-sampled by luminance)
+    // implements the same interface and is returned here for light.file.
+    if (!light.file.empty()) return std::make_unique<EnvironmentMapNotYet>(light.file);
+    return std::make_unique<ConstantEnvironmentLight>(light.radiance * light.scale, bounds);
+}
+
+}  // namespace pt

@@ -1,0 +1,103 @@
+// ray_cost: what a shadow (any-hit) ray costs against a closest-hit ray, on
+// the same rays through the same accelerator, for docs/direct.md. Not a test.
+//
+//   ray_cost SCENE.json [--rays N] [--accel none|bvh]
+//
+// Collects N shadow rays as the direct integrator makes them (camera ray ->
+// first hit -> a light sample -> isect.spawn_ray_to), then times
+// Accelerator::occluded and Accelerator::intersect over that same list, one
+// thread, best of 3 runs each. Also times closest-hit camera rays.
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "core/counters.h"
+#include "core/timer.h"
+#include "render/integrator.h"
+#include "render/render_context.h"
+#include "scene/scene_loader.h"
+#include "stages/camera.h"
+
+using namespace pt;
+
+int main(int argc, char** argv) {
+    if (argc < 2) {
+        std::fprintf(stderr, "usage: %s SCENE.json [--rays N] [--accel none|bvh]\n", argv[0]);
+        return 2;
+    }
+    Scene scene = load_scene(argv[1]);
+    size_t count = 1000000;
+    AcceleratorSettings accel;
+    for (int i = 2; i + 1 < argc; i += 2) {
+        std::string flag = argv[i];
+        if (flag == "--rays") count = size_t(std::atol(argv[i + 1]));
+        if (flag == "--accel") accel.use_bvh = std::string(argv[i + 1]) == "bvh";
+    }
+    Stages stages = make_stages(StageSet::none());
+    std::unique_ptr<Accelerator> accelerator = build_accelerator(scene, stages, accel);
+    std::unique_ptr<Integrator> integrator = make_integrator(IntegratorKind::direct);
+    RenderSettings settings;
+    RenderContext context{scene, *accelerator, stages, settings, *integrator};
+
+    std::vector<Ray> camera_rays, shadow_rays;
+    Rng rng(1);
+    while (shadow_rays.size() < count) {
+        Ray ray =
+            reference::generate_ray(scene.camera, rng.next_1d(), rng.next_1d(), Vec2(0.5, 0.5));
+        std::optional<SurfaceInteraction> isect = context.intersect(ray);
+        camera_rays.push_back(ray);
+        if (!isect) continue;
+        BSDF bsdf = context.bsdf_at(*isect);
+        LightSampleContext ref{isect->p, bsdf.frame().n};
+        for (const auto& light : context.lights.all()) {
+            LightSample s = light->sample_Li(ref, rng.next_2d());
+            if (s.valid() && bsdf.to_local(s.wi).z > 0)
+                shadow_rays.push_back(isect->spawn_ray_to(s.p));
+        }
+    }
+    auto time_best = [](auto body) {
+        double best = 1e300;
+        for (int run = 0; run < 3; ++run) {
+            Timer t;
+            body();
+            best = std::min(best, t.seconds());
+        }
+        return best;
+    };
+    size_t blocked = 0, hits = 0, camera_hits = 0;
+    RayCounters before = thread_counters();
+    double t_occluded = time_best([&] {
+        blocked = 0;
+        for (const Ray& r : shadow_rays)
+            blocked += accelerator->occluded(r);
+    });
+    uint64_t tests_occluded = (thread_counters().primitive_tests - before.primitive_tests) / 3;
+    before = thread_counters();
+    double t_closest = time_best([&] {
+        hits = 0;
+        for (const Ray& r : shadow_rays)
+            hits += accelerator->intersect(r).has_value();
+    });
+    uint64_t tests_closest = (thread_counters().primitive_tests - before.primitive_tests) / 3;
+    double t_camera = time_best([&] {
+        camera_hits = 0;
+        for (const Ray& r : camera_rays)
+            camera_hits += accelerator->intersect(r).has_value();
+    });
+    double n = double(shadow_rays.size());
+    std::printf("scene %s, accelerator %s, %zu shadow rays (%.1f%% blocked), %zu camera rays\n",
+                argv[1], accelerator->info().name.c_str(), shadow_rays.size(), 100.0 * blocked / n,
+                camera_rays.size());
+    std::printf(
+        "| query on the shadow rays | ns per ray | primitive tests per ray |\n|---|---|---|\n");
+    std::printf("| occluded (any hit) | %.1f | %.1f |\n", t_occluded / n * 1e9, tests_occluded / n);
+    std::printf("| intersect (closest hit) | %.1f | %.1f |\n", t_closest / n * 1e9,
+                tests_closest / n);
+    std::printf("any-hit / closest-hit time on the same rays: %.2f\n", t_occluded / t_closest);
+    std::printf("closest-hit camera rays: %.1f ns per ray; shadow / camera ray time: %.2f\n",
+                t_camera / camera_rays.size() * 1e9,
+                (t_occluded / n) / (t_camera / camera_rays.size()));
+    return 0;
+}
