@@ -111,6 +111,21 @@ std::vector<FlagSpec> flag_table() {
              o.render.direct = d == "light" ? DirectStrategy::light
                                : d == "hemisphere" ? DirectStrategy::hemisphere : DirectStrategy::mis;
          }},
+        {{"--rr-depth"}, 1, [](Options& o, S f, V v) {
+             // A whole number, or "off": no roulette (every path runs to -m).
+             if (v[0] == "off") {
+                 o.render.russian_roulette = false;
+                 return;
+             }
+             try {
+                 o.render.rr_depth = int(to_integer(f, v[0], 0, 100000));
+             } catch (const InputError&) {
+                 throw InputError(f + ": expected a whole number >= 0 (bounces before Russian "
+                                      "roulette starts) or 'off', got '" + v[0] + "'");
+             }
+             o.render.russian_roulette = true;
+         }},
+        {{"--clamp"}, 1, [](Options& o, S f, V v) { o.render.clamp = to_real(f, v[0], 0, 1e300, true); }},
         {{"--triangle"}, 1, [](Options& o, S f, V v) { o.triangle_test = one_of(f, v[0], {"moller", "watertight"}); }},
         {{"--bvh-split"}, 1, [](Options& o, S f, V v) { o.accelerator.split = one_of(f, v[0], {"sah", "median", "middle"}); }},
         {{"--max-leaf"}, 1, [](Options& o, S f, V v) { o.accelerator.max_leaf = int(to_integer(f, v[0], 1, 255)); }},
@@ -183,6 +198,8 @@ std::string usage(const std::string& program, StageSet default_student) {
       << "  --stats FILE.json  seconds per phase, rays, spp, BVH, effects\n"
       << "  -q              no progress bar\n"
       << "  --direct light|hemisphere|mis                                          [light]\n"
+      << "  --rr-depth N|off  Russian roulette after N bounces, or none            [3]\n"
+      << "  --clamp X       scale samples down to max component X (biased)         [off]\n"
       << "  --triangle moller|watertight                                           [moller]\n"
       << "  --bvh-split sah|median|middle, --max-leaf N                            [sah, 4]\n"
       << "  --bvh-view PATH highlight the BVH node at PATH (L/R steps from the root)\n"

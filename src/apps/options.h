@@ -16,7 +16,7 @@ namespace pt {
 
 struct Options {
     std::string scene_path;            ///< SCENE.json or MESH.obj
-    RenderSettings render;             ///< -s -a -l -m -o -H --direct --integrator --seed
+    RenderSettings render;             ///< -s -a -l -m -o -H --direct --integrator --seed --rr-depth --clamp
     AcceleratorSettings accelerator;   ///< --accel --bvh-split --max-leaf
     StageSet student;                  ///< --student
     int threads = 1;                   ///< -t (default: all hardware threads)

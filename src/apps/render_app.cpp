@@ -20,6 +20,7 @@
 #include "render/sample_rate_image.h"
 #include "scene/effects.h"
 #include "scene/scene_loader.h"
+#include "stages/global.h"
 
 namespace pt {
 namespace {
@@ -71,8 +72,8 @@ struct PhaseSeconds {
 };
 
 void write_stats(const std::string& path, const std::string& program, const Options& options, const Scene& scene,
-                 const Effects& effects, IntegratorKind integrator, const AcceleratorInfo& accel,
-                 const RenderResult& result, const PhaseSeconds& seconds) {
+                 const Effects& effects, const CodePaths& code_paths, IntegratorKind integrator,
+                 const AcceleratorInfo& accel, const RenderResult& result, const PhaseSeconds& seconds) {
     const RayCounters& c = result.counters;
     double rays = double(std::max<uint64_t>(c.rays(), 1));
     nlohmann::json j;
@@ -88,6 +89,20 @@ void write_stats(const std::string& path, const std::string& program, const Opti
     j["student_stages"] = options.student.to_string();
     j["integrator"] = to_string(integrator);
     j["effects"] = effects.names();
+    j["code_paths"] = {{"light_sampling", code_paths.light_sampling},
+                       {"shadow_rays", code_paths.shadow_rays},
+                       {"emission", code_paths.emission},
+                       {"refraction", code_paths.refraction},
+                       {"lens_sampling", code_paths.lens_sampling}};
+    j["max_depth"] = options.render.max_depth;
+    j["accumulate_bounces"] = options.render.accumulate_bounces;
+    j["direct"] = to_string(options.render.direct);
+    j["russian_roulette"] = options.render.russian_roulette
+                                ? nlohmann::json{{"rr_depth", options.render.rr_depth},
+                                                 {"max_survival", kMaxSurvivalProbability}}
+                                : nlohmann::json(false);
+    j["clamp"] = options.render.clamp > 0 ? nlohmann::json(options.render.clamp) : nlohmann::json(false);
+    j["clamped_samples"] = c.clamped_samples;
     j["seconds"] = {{"load", seconds.load}, {"build", seconds.build}, {"render", seconds.render},
                     {"total", seconds.load + seconds.build + seconds.render}};
     j["rays"] = {{"camera", c.camera_rays}, {"closest_hit", c.closest_hit_rays}, {"shadow", c.shadow_rays},
@@ -137,15 +152,19 @@ int run(const std::vector<std::string>& args, const std::string& program, StageS
     Stages stages = make_stages(options.student);
     Effects effects = analyze_effects(scene, options.render);
     std::string reason;
-    IntegratorKind kind = choose_integrator(scene, effects, options.render, &reason);
+    IntegratorKind kind = choose_integrator(scene, effects, options.render, &reason, options.student);
     std::unique_ptr<Integrator> integrator = make_integrator(kind);
+    CodePaths code_paths = plan_code_paths(scene, effects, options.render);
     if (options.student.contains(Stage::adaptive) && !options.render.adaptive)
         std::cout << program << ": note: adaptive sampling is off; add -a N TOL to run your has_converged\n";
     std::cout << program << ": " << scene.path << ": " << scene.triangles.size() << " triangles, "
               << scene.spheres.size() << " spheres, " << scene.emitters.size() << " emitters\n"
               << program << ": student stages: " << options.student.to_string() << "\n"
               << program << ": effects: " << effects.to_string() << "\n"
-              << program << ": integrator: " << to_string(kind) << " (" << reason << ")\n";
+              << program << ": integrator: " << to_string(kind) << " (" << reason << ")\n"
+              << program << ": skipped: " << skipped_code_paths(code_paths) << "\n";
+    std::string note = integrator_note(kind, scene, options.render);
+    if (!note.empty()) std::cout << program << ": note: " << note << "\n";
 
     timer.reset();
     std::unique_ptr<Accelerator> accelerator = build_accelerator(scene, stages, options.accelerator);
@@ -170,7 +189,8 @@ int run(const std::vector<std::string>& args, const std::string& program, StageS
     if (!options.hdr_output.empty()) written += ", " + options.hdr_output;
     AcceleratorInfo accel_info = accelerator->info();
     if (!options.stats_output.empty())
-        write_stats(options.stats_output, program, options, scene, effects, kind, accel_info, result, seconds);
+        write_stats(options.stats_output, program, options, scene, effects, code_paths, kind, accel_info, result,
+                    seconds);
 
     const RayCounters& c = result.counters;
     double rays = double(std::max<uint64_t>(c.rays(), 1));
@@ -183,6 +203,9 @@ int run(const std::vector<std::string>& args, const std::string& program, StageS
     std::cout << program << ": wrote " << written << "\n" << program << ": " << line << "\n";
     if (c.nonfinite_samples > 0)
         std::cout << program << ": warning: " << c.nonfinite_samples << " NaN/Inf samples were dropped\n";
+    if (c.clamped_samples > 0)
+        std::cout << program << ": note: --clamp scaled down " << c.clamped_samples
+                  << " samples (biased: the image is darker than the true mean)\n";
     return kExitOk;
 }
 

@@ -16,6 +16,7 @@ struct RayCounters {
     uint64_t primitive_tests = 0;    ///< ray-triangle and ray-sphere tests
     uint64_t nodes_visited = 0;      ///< BVH nodes whose box was tested
     uint64_t nonfinite_samples = 0;  ///< NaN/Inf radiance samples caught before the film
+    uint64_t clamped_samples = 0;    ///< samples scaled down by --clamp (biased; 0 without it)
 
     uint64_t rays() const { return closest_hit_rays + shadow_rays; }
     RayCounters& operator+=(const RayCounters& o) {
@@ -25,6 +26,7 @@ struct RayCounters {
         primitive_tests += o.primitive_tests;
         nodes_visited += o.nodes_visited;
         nonfinite_samples += o.nonfinite_samples;
+        clamped_samples += o.clamped_samples;
         return *this;
     }
     /// The work done between two readings of the same counters.
@@ -36,6 +38,7 @@ struct RayCounters {
         d.primitive_tests -= o.primitive_tests;
         d.nodes_visited -= o.nodes_visited;
         d.nonfinite_samples -= o.nonfinite_samples;
+        d.clamped_samples -= o.clamped_samples;
         return d;
     }
 };

@@ -17,12 +17,13 @@ namespace pt {
 class Rng {
 public:
     /// A generator for one camera sample (see the file comment).
-    Rng(uint64_t seed, uint64_t pixel_index, uint64_t sample_index) {
-        // Two independent hashes: one picks the stream (increment), one the
-        // starting state, so neighbouring pixels and samples are uncorrelated.
-        uint64_t a = mix(seed ^ mix(pixel_index + 0x9E3779B97F4A7C15ull));
-        uint64_t b = mix(a ^ mix(sample_index + 0xD1B54A32D192ED03ull));
-        set_sequence(b, a);
+    Rng(uint64_t seed, uint64_t pixel_index, uint64_t sample_index)
+        : Rng(seed, pixel_index, sample_index, 0) {}
+    /// The generator of a camera sample's lens position: a stream of its
+    /// own, so that a pinhole camera, which draws no lens sample, leaves
+    /// every other random number of the sample where it was.
+    static Rng lens(uint64_t seed, uint64_t pixel_index, uint64_t sample_index) {
+        return Rng(seed, pixel_index, sample_index, 0x6C656E73ull);  // "lens"
     }
     /// A generator for a single stream, for tests and tools.
     explicit Rng(uint64_t seed = 0) { set_sequence(mix(seed), mix(seed + 1)); }
@@ -56,6 +57,14 @@ public:
     }
 
 private:
+    Rng(uint64_t seed, uint64_t pixel_index, uint64_t sample_index, uint64_t stream) {
+        // Two independent hashes: one picks the stream (increment), one the
+        // starting state, so neighbouring pixels and samples are uncorrelated.
+        uint64_t a = mix(seed ^ mix(pixel_index + 0x9E3779B97F4A7C15ull));
+        if (stream != 0) a = mix(a ^ mix(stream));
+        uint64_t b = mix(a ^ mix(sample_index + 0xD1B54A32D192ED03ull));
+        set_sequence(b, a);
+    }
     /// SplitMix64 finaliser (Steele et al. 2014): a bijective 64-bit hash.
     static uint64_t mix(uint64_t z) {
         z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;

@@ -9,6 +9,7 @@
 #include "core/ray.h"
 #include "core/rng.h"
 #include "render/settings.h"
+#include "stages/stage_set.h"
 
 namespace pt {
 
@@ -30,6 +31,11 @@ std::unique_ptr<Integrator> make_depth_integrator();
 /// Emission plus direct light at the first hit, through the direct stage
 /// (stages/direct.h; render/direct_integrator.cpp): -m 0 emission only, -m 1 direct light.
 std::unique_ptr<Integrator> make_direct_integrator();
+/// Whitted ray tracing: direct light at non-specular surfaces, mirror and
+/// glass followed recursively and deterministically (render/whitted_integrator.cpp).
+std::unique_ptr<Integrator> make_whitted_integrator();
+/// Path tracing through the global stage (stages/global.h): -m, -o, Russian roulette.
+std::unique_ptr<Integrator> make_path_integrator();
 
 }  // namespace pt
 
@@ -38,10 +44,14 @@ namespace pt {
 struct Scene;
 struct Effects;
 
-/// The integrator `--integrator auto` picks for a scene (DESIGN.md "Effects"),
-/// with the reason in one phrase for the start-up line.
+/// The integrator `--integrator auto` picks for a scene (DESIGN.md "Effects";
+/// rules in render/integrator_choice.cpp), with the reason in one phrase for
+/// the start-up line. `student`: with `global` among them, the path tracer.
 IntegratorKind choose_integrator(const Scene& scene, const Effects& effects, const RenderSettings& settings,
-                                 std::string* reason);
+                                 std::string* reason, StageSet student = StageSet::none());
+/// A caveat worth printing about `kind` on this scene ("" if none): Whitted
+/// forced on area lights, or with -m >= 2.
+std::string integrator_note(IntegratorKind kind, const Scene& scene, const RenderSettings& settings);
 /// An integrator of the given kind (not `automatic`).
 std::unique_ptr<Integrator> make_integrator(IntegratorKind kind);
 

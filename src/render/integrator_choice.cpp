@@ -1,5 +1,16 @@
 // Which integrator renders a scene: the user's --integrator, or for `auto`
-// the cheapest one that simulates every effect the scene calls for.
+// the cheapest one that simulates every effect the scene and flags call for
+// (DESIGN.md "Effects"; the rules are in docs/global.md):
+//
+//   normals  nothing emits light
+//   path     `global` is a student stage (so that part4 runs the student's code)
+//   whitted  every light is a point or directional light, -m >= 1, and no
+//            diffuse interreflection is asked for (-m 1, or nothing
+//            non-specular to bounce between): exact, no Monte Carlo noise
+//   direct   -m 0; or -m 1 when no mirror or glass can show an area light or
+//            the sky (a reflection of a lamp is a one-bounce path)
+//   path     everything else (-m >= 2 with area or sky light, or diffuse
+//            interreflection; -m 1 with lamps seen in mirrors or glass)
 #include <stdexcept>
 
 #include "render/integrator.h"
@@ -8,22 +19,48 @@
 
 namespace pt {
 
-IntegratorKind choose_integrator(const Scene& scene, const Effects&, const RenderSettings& settings,
-                                 std::string* reason) {
-    if (settings.integrator != IntegratorKind::automatic) {
-        if (reason) *reason = "chosen with --integrator";
-        return settings.integrator;
-    }
-    if (!scene.has_lights()) {
-        if (reason) *reason = "nothing in the scene emits light, so normals are shown";
-        return IntegratorKind::normals;
-    }
-    // Part 4 refines this: path tracing for -m >= 2, Whitted for delta lights only.
-    if (reason)
-        *reason = settings.max_depth >= 2
-                      ? "the scene has lights; -m >= 2 needs path tracing (Part 4), so direct light only"
-                      : "the scene has lights: emission and direct light";
-    return IntegratorKind::direct;
+IntegratorKind choose_integrator(const Scene& scene, const Effects& effects,
+                                 const RenderSettings& settings, std::string* reason,
+                                 StageSet student) {
+    auto because = [&](IntegratorKind kind, const char* why) {
+        if (reason) *reason = why;
+        return kind;
+    };
+    if (settings.integrator != IntegratorKind::automatic)
+        return because(settings.integrator, "chosen with --integrator");
+    if (!scene.has_lights())
+        return because(IntegratorKind::normals,
+                       "nothing in the scene emits light, so normals are shown");
+    if (student.contains(Stage::global))
+        return because(IntegratorKind::path, "global is a student stage: the path tracer runs it");
+    const int m = settings.max_depth;
+    const bool only_delta_lights = scene.emitters.empty() && !scene.environment;
+    if (only_delta_lights && m >= 1 && !effects.diffuse_interreflection)
+        return because(IntegratorKind::whitted,
+                       m == 1 ? "only point and directional lights, and -m 1 asks for no diffuse "
+                                "interreflection: exact, no noise but anti-aliasing"
+                              : "only point and directional lights, and no surface that light "
+                                "could bounce between: exact, no noise but anti-aliasing");
+    if (m == 0) return because(IntegratorKind::direct, "-m 0: emission only");
+    const bool specular = effects.mirror || effects.refraction;
+    if (m == 1 && !(specular && !only_delta_lights))
+        return because(IntegratorKind::direct, "-m 1: emission and direct light");
+    if (m == 1)
+        return because(IntegratorKind::path,
+                       "-m 1 with mirrors or glass: lights seen in them are one-bounce paths");
+    return because(IntegratorKind::path, "-m >= 2: light bounces between surfaces");
+}
+
+std::string integrator_note(IntegratorKind kind, const Scene& scene,
+                            const RenderSettings& settings) {
+    if (kind != IntegratorKind::whitted) return "";
+    if (!scene.emitters.empty() || scene.environment)
+        return "Whitted lights surfaces with area and sky lights by light sampling (-l), which "
+               "is noisy; it is exact for point and directional lights only";
+    if (settings.max_depth >= 2)
+        return "Whitted has no diffuse interreflection: -m " + std::to_string(settings.max_depth) +
+               " shows what -m 1 shows (use --integrator path for more bounces)";
+    return "";
 }
 
 std::unique_ptr<Integrator> make_integrator(IntegratorKind kind) {
@@ -31,6 +68,8 @@ std::unique_ptr<Integrator> make_integrator(IntegratorKind kind) {
         case IntegratorKind::normals: return make_normals_integrator();
         case IntegratorKind::depth: return make_depth_integrator();
         case IntegratorKind::direct: return make_direct_integrator();
+        case IntegratorKind::whitted: return make_whitted_integrator();
+        case IntegratorKind::path: return make_path_integrator();
         default: break;
     }
     throw std::logic_error(std::string("integrator '") + to_string(kind) + "' is not available");

@@ -5,6 +5,7 @@
 #include "core/counters.h"
 #include "core/math.h"
 #include "render/integrator.h"
+#include "scene/effects.h"
 
 namespace pt {
 
@@ -53,7 +54,8 @@ RenderContext::RenderContext(const Scene& scene_, const Accelerator& accelerator
       stages(stages_),
       settings(settings_),
       integrator(integrator_),
-      lights(*owned_lights_) {}
+      lights(*owned_lights_),
+      code_paths(plan_code_paths(scene_, analyze_effects(scene_, settings_), settings_)) {}
 
 std::optional<SurfaceInteraction> RenderContext::intersect(const Ray& ray) const {
     ++thread_counters().closest_hit_rays;
@@ -63,12 +65,19 @@ std::optional<SurfaceInteraction> RenderContext::intersect(const Ray& ray) const
 }
 
 bool RenderContext::occluded(const Ray& ray) const {
+    if (!code_paths.shadow_rays) return false;  // nothing in the scene can block a light sample
     ++thread_counters().shadow_rays;
     return accelerator.occluded(ray);
 }
 
 Color RenderContext::radiance(const Ray& ray, Rng& rng) const {
-    return integrator.Li(*this, ray, rng);
+    Color L = integrator.Li(*this, ray, rng);
+    // Clamping trades bias for less variance; only on request, and counted.
+    if (settings.clamp > 0 && L.max_component() > settings.clamp) {
+        ++thread_counters().clamped_samples;
+        L *= settings.clamp / L.max_component();
+    }
+    return L;
 }
 
 BSDF RenderContext::bsdf_at(const SurfaceInteraction& isect) const {

@@ -37,12 +37,18 @@ public:
     const RenderSettings& settings;
     const Integrator& integrator;
     const LightSet& lights;  ///< every light of the scene (scene/light_set.h)
+    /// The code paths this render runs (scene/effects.h): the effects
+    /// analysis of scene and settings, plus settings.force.
+    const CodePaths code_paths;
 
     /// The closest surface hit by `ray`, or nothing (counted as a closest-hit ray).
     std::optional<SurfaceInteraction> intersect(const Ray& ray) const;
-    /// Whether anything blocks `ray` within its interval (counted as a shadow ray).
+    /// Whether anything blocks the shadow ray `ray` within its interval
+    /// (counted as a shadow ray). False without tracing when the effects
+    /// analysis proved that no light sample can be blocked (code_paths.shadow_rays).
     bool occluded(const Ray& ray) const;
-    /// The integrator's radiance estimate along a camera ray.
+    /// The integrator's radiance estimate along a camera ray; with --clamp X
+    /// scaled so that its largest component is at most X (counted).
     Color radiance(const Ray& ray, Rng& rng) const;
     /// The BSDF at `isect`: its material in the shading frame of isect.n,
     /// with the direct stage's diffuse routines (student or reference). For

@@ -27,6 +27,18 @@ enum class IntegratorKind {
 const char* to_string(DirectStrategy s);
 const char* to_string(IntegratorKind k);
 
+/// Code paths that the effects analysis (scene/effects.h) may switch off
+/// because the effect they simulate cannot contribute to the image. Here
+/// each field forces its path *on* regardless (RenderSettings::force): the
+/// tests use it to prove that skipping a path changes no pixel. Not a flag.
+struct CodePaths {
+    bool light_sampling = false;  ///< next-event estimation in the path tracer (any light)
+    bool shadow_rays = false;     ///< visibility tests of light samples (something can occlude)
+    bool emission = false;  ///< emission and MIS weights found by BSDF-sampled rays (emitters, sky)
+    bool refraction = false;      ///< the refraction factor eta^2 kept out of Russian roulette (glass)
+    bool lens_sampling = false;   ///< a lens sample per camera ray (thin lens)
+};
+
 struct RenderSettings {
     int spp = 1;                      ///< -s: camera rays per pixel (the maximum with -a)
     int light_samples = 1;            ///< -l: samples per area light
@@ -38,6 +50,11 @@ struct RenderSettings {
     double max_tolerance = 0.05;      ///< -a TOL: relative half-width of the 95% interval
     DirectStrategy direct = DirectStrategy::light;  ///< --direct, -H
     IntegratorKind integrator = IntegratorKind::automatic;  ///< --integrator
+    bool russian_roulette = true;     ///< --rr-depth off turns it off
+    int rr_depth = 3;                 ///< --rr-depth N: paths of up to N bounces never meet roulette
+    double clamp = 0;                 ///< --clamp X: each sample's max component <= X (biased); 0 = off
+    int whitted_max_specular = 8;     ///< specular bounces the Whitted integrator follows
+    CodePaths force;                  ///< debug: code paths run even when the analysis skips them
 };
 
 }  // namespace pt

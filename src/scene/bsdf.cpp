@@ -1,14 +1,38 @@
 #include "scene/bsdf.h"
 
+#include <cmath>
+
 #include "core/sampling.h"
+#include "scene/fresnel.h"
 #include "scene/material.h"
+#include "scene/microfacet.h"
 
 namespace pt {
+namespace {
+
+double alpha_of(const Material& m) { return std::max(m.roughness, ggx::kMinAlpha); }
+
+/// The microfacet conductor: F(wo . m) D(m) G2 / (4 cos_o cos_i), reflection only.
+Color microfacet_f(const Material& m, const Vec3& wo, const Vec3& wi) {
+    if (wo.z <= 0 || wi.z <= 0) return Color(0);
+    Vec3 h = wo + wi;
+    double len = h.norm();
+    if (!(len > 0)) return Color(0);
+    Vec3 half = h / len;
+    double alpha = alpha_of(m);
+    double d_g = ggx::D(half, alpha) * ggx::G2(wo, wi, alpha);
+    if (!(d_g > 0)) return Color(0);
+    return fresnel_conductor(dot(wo, half), m.eta, m.k) * (d_g / (4.0 * wo.z * wi.z));
+}
+
+}  // namespace
 
 Color BSDF::f(const Vec3& wo, const Vec3& wi) const {
     switch (material_->type) {
         case MaterialType::diffuse:
             return diffuse_.f(material_->albedo, wo, wi);
+        case MaterialType::microfacet:
+            return microfacet_f(*material_, wo, wi);
         case MaterialType::mirror:
         case MaterialType::glass:
             break;  // deltas: f is zero for every given pair
@@ -16,26 +40,83 @@ Color BSDF::f(const Vec3& wo, const Vec3& wi) const {
     return Color(0);
 }
 
+int BSDF::delta_lobes(const Vec3& wo, DeltaLobe lobes[2]) const {
+    const Material& m = *material_;
+    if (m.type == MaterialType::mirror) {
+        lobes[0] = {Vec3(-wo.x, -wo.y, wo.z), m.reflectance, 1.0, 1.0};
+        return 1;
+    }
+    if (m.type != MaterialType::glass) return 0;
+    // Entering when wo is on the side of the stored normal (the outside);
+    // eta = n(wi side) / n(wo side) for the refracted direction.
+    const double cos_o = wo.z;
+    const bool entering = cos_o > 0;
+    const double eta = entering ? m.ior : 1.0 / m.ior;
+    const double F = fresnel_dielectric(cos_o, m.ior);
+    const Vec3 reflected(-wo.x, -wo.y, wo.z);
+    if (F >= 1.0) {  // total internal reflection: everything is reflected
+        lobes[0] = {reflected, m.reflectance, 1.0, 1.0};
+        return 1;
+    }
+    int n = 0;
+    if (F > 0) lobes[n++] = {reflected, m.reflectance * F, F, 1.0};
+    // Snell's law: wi = -wo / eta + (cos_o / eta - cos_t) n, with n = +-z
+    // on wo's side and cos_t = sqrt(1 - sin^2(theta_o) / eta^2).
+    double sin2_t = std::max(0.0, 1.0 - cos_o * cos_o) / (eta * eta);
+    double cos_t = safe_sqrt(1.0 - sin2_t);
+    Vec3 refracted(-wo.x / eta, -wo.y / eta, entering ? -cos_t : cos_t);
+    // Radiance is (n_wi / n_wo)^2 denser on the far side: divide by eta^2.
+    lobes[n++] = {refracted, m.transmittance * ((1.0 - F) / (eta * eta)), 1.0 - F, eta};
+    return n;
+}
+
 BSDFSample BSDF::sample_f(const Vec3& wo, Vec2 u) const {
     switch (material_->type) {
         case MaterialType::diffuse:
             return diffuse_.sample_f(material_->albedo, wo, u);
+        case MaterialType::microfacet: {
+            BSDFSample s;
+            if (wo.z <= 0) return s;
+            double alpha = alpha_of(*material_);
+            Vec3 half = ggx::sample_visible_normal(wo, alpha, u);
+            s.wi = ggx::reflect(wo, half);
+            // Reflected below the surface: the facet is hidden from wi (no sample).
+            if (s.wi.z <= 0) return {};
+            s.wi = s.wi.unit();
+            s.pdf = ggx::reflection_pdf(wo, s.wi, alpha);
+            if (!(s.pdf > 0) || !std::isfinite(s.pdf)) return {};
+            s.f = microfacet_f(*material_, wo, s.wi);
+            return s;
+        }
         case MaterialType::mirror:
         case MaterialType::glass:
-            break;  // Part 4 samples the mirror and glass deltas here
+            break;
     }
-    BSDFSample none;
-    none.is_delta = true;
-    return none;
+    // A delta: pick one lobe with its probability; f |cos| / pdf is then
+    // the lobe's weight divided by its probability.
+    DeltaLobe lobes[2];
+    int n = delta_lobes(wo, lobes);
+    BSDFSample s;
+    s.is_delta = true;
+    if (n == 0) return s;
+    const DeltaLobe& lobe = (n == 2 && u.x >= lobes[0].probability) ? lobes[1] : lobes[0];
+    double cos_i = std::fabs(lobe.wi.z);
+    if (!(cos_i > 0)) return s;  // grazing: carries nothing
+    s.wi = lobe.wi;
+    s.f = lobe.weight / cos_i;
+    s.pdf = lobe.probability;
+    s.eta = lobe.eta;
+    return s;
 }
 
 double BSDF::pdf(const Vec3& wo, const Vec3& wi) const {
-    (void)wo;
     switch (material_->type) {
         // The density of cosine-weighted sampling, which the Lambertian
         // sample_f contract prescribes (stages/direct.h).
         case MaterialType::diffuse:
             return wi.z > 0 ? cosine_hemisphere_pdf(wi.z) : 0.0;
+        case MaterialType::microfacet:
+            return ggx::reflection_pdf(wo, wi, alpha_of(*material_));
         case MaterialType::mirror:
         case MaterialType::glass:
             break;
@@ -44,7 +125,7 @@ double BSDF::pdf(const Vec3& wo, const Vec3& wi) const {
 }
 
 bool BSDF::is_delta() const {
-    return material_->type != MaterialType::diffuse;
+    return material_->type == MaterialType::mirror || material_->type == MaterialType::glass;
 }
 
 }  // namespace pt

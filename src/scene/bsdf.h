@@ -3,31 +3,47 @@
 // and wi both point away from the surface (STYLE.md: `wo`, `wi`); wo leads
 // back along the ray that arrived, wi towards where light comes from.
 //
-// The interface is the one every later material keeps (pbrt-v3 chapter 8,
+// The interface is the one every material keeps (pbrt-v3 chapter 8,
 // CS184's BSDF):
 //   f(wo, wi)          the BSDF value, 1/sr
-//   sample_f(wo, u)    a direction wi drawn with a known solid-angle pdf,
-//                      with f(wo, wi) and the pdf, so that a Monte Carlo
-//                      estimator can weight it by f cos / pdf
+//   sample_f(wo, u)    a direction wi drawn with a known pdf, with f(wo, wi)
+//                      and the pdf, so that a Monte Carlo estimator can
+//                      weight it by f cos / pdf
 //   pdf(wo, wi)        the density sample_f draws wi with (for MIS)
 //   is_delta()         whether the BSDF is a Dirac delta (mirror, glass):
 //                      f and pdf are 0 for every direction given, only
-//                      sample_f finds the one direction that scatters.
+//                      sample_f (or delta_lobes) finds the directions that scatter.
+//
+// The materials (material.h):
+//   diffuse     Lambertian, albedo / pi; cosine-weighted sampling. Its two
+//               functions are staged (stages/direct.h, Part 3) and reached
+//               through DiffuseRoutines, so a student's code runs here.
+//   mirror      perfect specular reflection wi = (-wo.x, -wo.y, wo.z), weight
+//               `reflectance` (a delta).
+//   glass       smooth dielectric (a delta with two lobes): reflection with
+//               Fresnel probability F (fresnel.h), refraction by Snell's law
+//               with probability 1 - F; F = 1 beyond the critical angle (total
+//               internal reflection). The frame keeps the stored normal, so
+//               the sign of cos(theta_o) = wo.z tells entering (wo.z > 0,
+//               outside) from leaving. Refracted radiance is scaled by
+//               (n_o / n_i)^2, n_o and n_i the indices on wo's and wi's sides
+//               (radiance is compressed into the denser medium; pbrt-v3
+//               section 8.2.3, Veach 1997 section 5.2).
+//   microfacet  rough conductor: GGX distribution, height-correlated Smith
+//               shadowing, conductor Fresnel, sampled by visible normals
+//               (microfacet.h). Reflection only.
 //
 // One BSDF is built per hit, from the Material and the shading frame, by
 // RenderContext::bsdf_at (render/render_context.h), which also decides on
-// which side of the surface the frame's +z lies (two-sided diffuse).
+// which side of the surface the frame's +z lies (two-sided for all but glass).
 // Materials are a closed set (material.h), so the BSDF switches on the
 // type instead of allocating a virtual object per hit.
 //
-// Part 3 implements the Lambertian (diffuse) BSDF; its two functions are
-// staged (stages/direct.h) and reach the BSDF through DiffuseRoutines, so
-// the student's code runs here when `direct` is a student stage. Mirror and
-// glass arrive with Part 4; until then they scatter nothing, which is what
-// direct lighting from area lights gives a delta BSDF anyway.
-//
-// Tests: tests/unit/test_bsdf.cpp (values, reciprocity, energy),
-// tests/statistical/test_bsdf_sampling.cpp (chi-square of sample_f against pdf).
+// Tests: tests/unit/test_bsdf.cpp and test_materials.cpp (values,
+// reciprocity, energy, mirror direction, Fresnel, total internal
+// reflection), tests/statistical/test_bsdf_sampling.cpp (chi-square of
+// sample_f against pdf for the diffuse and microfacet lobes; the discrete
+// check of glass's two directions and their probabilities).
 #pragma once
 
 #include "core/color.h"
@@ -42,10 +58,24 @@ struct Material;
 struct BSDFSample {
     Vec3 wi;         ///< unit incident direction, local frame (normal = +z)
     Color f;         ///< f(wo, wi), 1/sr; for a delta lobe, its weight divided by |cos theta_i|
-    double pdf = 0;  ///< solid-angle density of wi; 0 means "no sample" (ignore it)
-    bool is_delta = false;  ///< drawn from a Dirac delta lobe (pdf is then 1 by convention)
+    double pdf = 0;  ///< solid-angle density of wi; for a delta lobe the probability of
+                     ///< picking that lobe (1 for a mirror, F or 1 - F for glass);
+                     ///< 0 means "no sample" (ignore it)
+    bool is_delta = false;  ///< drawn from a Dirac delta lobe
+    double eta = 1;  ///< n(wi side) / n(wo side) when wi is refracted, else 1 (for
+                     ///< Russian roulette, which discounts the (n_o / n_i)^2 in f)
 
     bool valid() const { return pdf > 0; }
+};
+
+/// One direction into which a delta BSDF scatters: the whole of its
+/// contribution, so that Whitted ray tracing can follow every lobe
+/// deterministically, and sample_f can pick one with `probability`.
+struct DeltaLobe {
+    Vec3 wi;                 ///< unit direction, local frame
+    Color weight;            ///< radiance reaching wo per unit radiance arriving along wi
+    double probability = 0;  ///< the chance that sample_f picks this lobe (> 0)
+    double eta = 1;          ///< n(wi side) / n(wo side): 1 for reflection
 };
 
 /// The staged diffuse routines (stages/direct.h) the BSDF calls.
@@ -76,6 +106,10 @@ class BSDF {
     double pdf(const Vec3& wo, const Vec3& wi) const;
     /// Whether the BSDF is a Dirac delta (mirror, glass): no light sample can reach it.
     bool is_delta() const;
+    /// The directions a delta BSDF scatters wo into, written to `lobes`:
+    /// 1 for a mirror, 2 for glass (reflection first, then refraction), 1
+    /// for glass under total internal reflection; 0 for a non-delta BSDF.
+    int delta_lobes(const Vec3& wo, DeltaLobe lobes[2]) const;
 
   private:
     const Material* material_;  ///< never null

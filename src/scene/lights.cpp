@@ -4,13 +4,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <stdexcept>
 #include <string>
 #include <utility>
 
 #include "core/frame.h"
 #include "core/math.h"
 #include "core/sampling.h"
+#include "scene/environment_map.h"
 #include "scene/interaction.h"
 
 namespace pt {
@@ -215,25 +215,36 @@ class ConstantEnvironmentLight final : public Light {
     FarAway far_;
 };
 
-/// Stands in for a lat-long environment map until Part 4 loads and samples
-/// one: it fails with a clear message when an integrator uses it, so renders
-/// that need no light (normals, depth) still work with -e.
-class EnvironmentMapNotYet final : public Light {
+/// A lat-long environment map (scene/environment_map.h), importance-sampled
+/// in proportion to luminance times sin(theta) by a 2D piecewise-constant
+/// distribution; the density ignores the shading normal (directions below
+/// the surface are drawn and then rejected by the estimator).
+class EnvironmentMapLight final : public Light {
   public:
-    explicit EnvironmentMapNotYet(std::string file) : file_(std::move(file)) {}
-    LightSample sample_Li(const LightSampleContext&, Vec2) const override { fail(); }
-    double pdf_Li(const LightSampleContext&, const Vec3&, const Vec3&, const Vec3&) const override {
-        fail();
+    EnvironmentMapLight(EnvironmentMap map, const BBox& bounds)
+        : map_(std::move(map)), far_(bounds) {}
+
+    LightSample sample_Li(const LightSampleContext& ref, Vec2 u) const override {
+        EnvironmentMap::Sample e = map_.sample(u);
+        if (!(e.pdf > 0) || !std::isfinite(e.pdf)) return {};
+        LightSample s;
+        s.L = e.L;
+        s.wi = e.wi;
+        s.pdf = e.pdf;
+        s.p = far_.point(ref.p, s.wi);
+        return s;
     }
-    Color Le(const Vec3&) const override { fail(); }
+
+    double pdf_Li(const LightSampleContext&, const Vec3& wi, const Vec3&,
+                  const Vec3&) const override {
+        return map_.pdf(wi.unit());
+    }
+
+    Color Le(const Vec3& direction) const override { return map_.Le(direction.unit()); }
 
   private:
-    [[noreturn]] void fail() const {
-        throw std::runtime_error("environment map " + file_ +
-                                 ": lat-long environment maps arrive with Part 4; use a constant "
-                                 "\"radiance\" for now");
-    }
-    std::string file_;
+    EnvironmentMap map_;
+    FarAway far_;
 };
 
 }  // namespace
@@ -256,9 +267,11 @@ std::unique_ptr<Light> make_directional_light(const DirectionalLight& light, con
 }
 
 std::unique_ptr<Light> make_environment_light(const EnvironmentLight& light, const BBox& bounds) {
-    // Part 4: a lat-long map light (importance-sampled by luminance)
-    // implements the same interface and is returned here for light.file.
-    if (!light.file.empty()) return std::make_unique<EnvironmentMapNotYet>(light.file);
+    if (!light.file.empty()) {
+        // The map's pixels times "radiance" (a tint, default white) times "scale".
+        return std::make_unique<EnvironmentMapLight>(
+            EnvironmentMap::load(light.file, light.radiance * light.scale), bounds);
+    }
     return std::make_unique<ConstantEnvironmentLight>(light.radiance * light.scale, bounds);
 }
 

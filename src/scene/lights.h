@@ -25,9 +25,9 @@ std::unique_ptr<Light> make_point_light(const PointLight& light);
 /// A directional light; `scene_bounds` places its shadow-ray targets outside the scene.
 std::unique_ptr<Light> make_directional_light(const DirectionalLight& light,
                                               const BBox& scene_bounds);
-/// The environment light. Constant radiance now; a lat-long map (light.file)
-/// is Part 4's: this is where it plugs in. Until then the map's light throws
-/// std::runtime_error naming the file as soon as an integrator uses it.
+/// The environment light: constant radiance (cosine-weighted sampling about
+/// the shading normal), or a lat-long map read from light.file (InputError
+/// naming the file if it cannot be read), importance-sampled by luminance.
 std::unique_ptr<Light> make_environment_light(const EnvironmentLight& light,
                                               const BBox& scene_bounds);
 

@@ -1,6 +1,8 @@
 // Material: what a surface is made of, as the scene file describes it.
 // The BSDFs that turn these parameters into scattering live with the
-// lighting stages (Parts 3 and 4); this is only the data.
+// lighting stages (Parts 3 and 4, scene/bsdf.h); this is only the data.
+// The scene format and the MTL mapping of each type are documented in
+// docs/global.md ("Materials").
 #pragma once
 
 #include <string>
@@ -13,6 +15,7 @@ enum class MaterialType {
     diffuse,  ///< Lambertian: albedo
     mirror,   ///< perfect specular reflection: reflectance
     glass,    ///< smooth dielectric: ior, reflectance, transmittance
+    microfacet,  ///< rough conductor (GGX, Smith): roughness, eta, k
 };
 
 struct Material {
@@ -23,6 +26,9 @@ struct Material {
     Color reflectance{1, 1, 1};             ///< mirror and glass: tint of reflected light, [0, 1]
     Color transmittance{1, 1, 1};           ///< glass: tint of refracted light, [0, 1]
     double ior = 1.5;                       ///< glass: index of refraction inside / outside
+    double roughness = 0.3;                 ///< microfacet: GGX alpha, in [0.001, 1] (0.001: almost a mirror)
+    Color eta{1.66, 0.88, 0.52};            ///< microfacet: real part of the conductor's IOR per channel
+    Color k{9.22, 6.27, 4.84};              ///< microfacet: imaginary part (absorption) per channel
 
     bool is_emissive() const { return !emission.is_black(); }
 };

@@ -2,6 +2,7 @@
 
 #include <tiny_obj_loader.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -10,6 +11,8 @@
 
 #include "core/error.h"
 #include "core/files.h"
+#include "scene/fresnel.h"
+#include "scene/microfacet.h"
 #include "scene/scene.h"
 
 namespace pt {
@@ -31,6 +34,14 @@ Material to_material(const tinyobj::material_t& m, const std::string& prefix) {
     } else if (m.illum == 4 || m.illum == 6 || m.illum == 7) {
         mat.type = MaterialType::glass;
         mat.ior = m.ior > 0 ? m.ior : 1.5;
+    } else if (m.metallic > 0) {
+        // The PBR extension of MTL: Pm (metallic) > 0 makes a rough metal
+        // whose colour at normal incidence is Kd and whose GGX alpha is Pr.
+        mat.type = MaterialType::microfacet;
+        mat.roughness = std::clamp(double(m.roughness), ggx::kMinAlpha, 1.0);
+        ConductorIndex index = conductor_from_reflectance(mat.albedo);
+        mat.eta = index.eta;
+        mat.k = index.k;
     }
     return mat;
 }

@@ -7,6 +7,7 @@ const char* to_string(MaterialType type) {
         case MaterialType::diffuse: return "diffuse";
         case MaterialType::mirror: return "mirror";
         case MaterialType::glass: return "glass";
+        case MaterialType::microfacet: return "microfacet";
     }
     return "unknown";
 }

@@ -13,8 +13,10 @@
 #include "core/files.h"
 #include "core/math.h"
 #include "image/image_io.h"
+#include "scene/fresnel.h"
 #include "scene/json_reader.h"
 #include "scene/mesh.h"
+#include "scene/microfacet.h"
 #include "scene/obj_loader.h"
 
 namespace pt {
@@ -79,8 +81,33 @@ Material read_material(const std::string& name, const JsonReader& j) {
         m.ior = j.positive("ior", 1.5);
         m.reflectance = j.color("reflectance", m.reflectance, 1.0);
         m.transmittance = j.color("transmittance", m.transmittance, 1.0);
+    } else if (type == "microfacet") {
+        j.allow_only({"type", "roughness", "eta", "k", "reflectance", "emission"});
+        m.type = MaterialType::microfacet;
+        m.roughness = j.number_in("roughness", ggx::kMinAlpha, 1.0, m.roughness);
+        // A metal is given by its complex index (eta and k together) or by
+        // its colour at normal incidence ("reflectance"), never both.
+        bool has_index = j.has("eta") || j.has("k");
+        if (has_index && j.has("reflectance"))
+            j.fail("reflectance", "give either \"eta\" and \"k\" or \"reflectance\", not both");
+        if (has_index) {
+            if (!j.has("eta")) j.fail("eta", "expected \"eta\" together with \"k\"");
+            if (!j.has("k")) j.fail("k", "expected \"k\" together with \"eta\"");
+            m.eta = j.color("eta", m.eta);
+            m.k = j.color("k", m.k);
+            if (!(m.eta.r > 0 && m.eta.g > 0 && m.eta.b > 0))
+                j.fail("eta", "expected three numbers > 0");
+        } else if (j.has("reflectance")) {
+            ConductorIndex index = conductor_from_reflectance(j.color("reflectance", Color(0), 1.0));
+            m.eta = index.eta;
+            m.k = index.k;
+        } else {
+            j.fail("", "a microfacet material needs \"eta\" and \"k\" (the metal's complex index) or "
+                       "\"reflectance\" (its colour)");
+        }
     } else {
-        j.fail("type", "unknown material type \"" + type + "\" (expected diffuse, mirror or glass)");
+        j.fail("type", "unknown material type \"" + type +
+                           "\" (expected diffuse, mirror, glass or microfacet)");
     }
     m.emission = j.color("emission", Color(0));
     return m;

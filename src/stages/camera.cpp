@@ -36,7 +36,11 @@ PixelResult raytrace_pixel(const RenderContext& context, int x, int y) {
         // on the thread count or on the order in which pixels are rendered.
         Rng rng(settings.seed, pixel, uint64_t(i));
         Vec2 jitter = settings.spp == 1 ? Vec2(0.5, 0.5) : rng.next_2d();
-        Vec2 lens = rng.next_2d();
+        // A pinhole needs no lens sample (DESIGN.md "Effects"); a thin lens
+        // draws it from a stream of its own, so the rest of the sample's
+        // random numbers are the same either way.
+        Vec2 lens(0.5, 0.5);
+        if (context.code_paths.lens_sampling) lens = Rng::lens(settings.seed, pixel, uint64_t(i)).next_2d();
         double u = (x + jitter.x) / scene.film_width;
         double v = 1.0 - (y + jitter.y) / scene.film_height;  // image rows run top to bottom
         Ray ray = context.stages.camera.generate_ray(scene.camera, u, v, lens);

@@ -43,6 +43,13 @@ Stages make_stages(StageSet student) {
                     reference::estimate_direct_lighting_importance,
                     reference::one_bounce_radiance};
     }
+    if (student.contains(Stage::global)) {
+        s.global = {student::at_least_one_bounce_radiance,
+                    student::est_radiance_global_illumination};
+    } else {
+        s.global = {reference::at_least_one_bounce_radiance,
+                    reference::est_radiance_global_illumination};
+    }
     return s;
 }
 

@@ -14,6 +14,7 @@
 #include "stages/adaptive.h"
 #include "stages/camera.h"
 #include "stages/direct.h"
+#include "stages/global.h"
 #include "stages/intersect.h"
 #include "stages/stage_set.h"
 
@@ -44,6 +45,7 @@ struct Stages {
     BvhStage bvh;
     AdaptiveStage adaptive;
     DirectStage direct;
+    GlobalStage global;
 
     bool is_student(Stage s) const { return student.contains(s); }
 };

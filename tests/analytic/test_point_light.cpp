@@ -50,9 +50,16 @@ TEST_CASE("point light: inverse-square law") {
         expected[c] = kAlbedo[c] / kPi * intensity * cos_theta / d.norm2();
     std::string json =
         scene(R"({"type": "point", "position": [0.9, 1.7, 0.4], "intensity": [5, 5, 5]})");
-    // -l does not change a delta light: one sample, the exact value.
+    // -l does not change a delta light: one sample, the exact value. (A
+    // lone plane cannot shadow anything, so the effects analysis skips its
+    // shadow rays; forced on, there is exactly one per pixel.)
     for (int l : {1, 16}) {
-        RenderResult r = render_json(json, settings_for(DirectStrategy::light, 1, l));
+        RenderSettings settings = settings_for(DirectStrategy::light, 1, l);
+        RenderResult r = render_json(json, settings);
+        check_all_pixels(r, expected);
+        CHECK(r.counters.shadow_rays == 0);
+        settings.force.shadow_rays = true;
+        r = render_json(json, settings);
         check_all_pixels(r, expected);
         CHECK(r.counters.shadow_rays == r.counters.camera_rays);
     }

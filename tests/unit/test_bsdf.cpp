@@ -40,14 +40,18 @@ TEST_CASE("diffuse BSDF: f cos / pdf = albedo for every sample (energy conservat
     CHECK((edge.valid() ? std::isfinite(edge.f.r / edge.pdf) : true));
 }
 
-TEST_CASE("mirror and glass are deltas: no light sample reaches them (until Part 4)") {
-    Material mirror;
-    mirror.type = MaterialType::mirror;
-    BSDF bsdf(mirror, Frame(), {reference::diffuse_f, reference::diffuse_sample_f});
-    CHECK(bsdf.is_delta());
-    CHECK(bsdf.f(Vec3(0, 0, 1), Vec3(0, 0, 1)).is_black());
-    CHECK(bsdf.pdf(Vec3(0, 0, 1), Vec3(0, 0, 1)) == 0);
-    CHECK_FALSE(bsdf.sample_f(Vec3(0, 0, 1), Vec2(0.5, 0.5)).valid());
+TEST_CASE("mirror and glass are deltas: no light sample reaches them, only sample_f") {
+    for (MaterialType type : {MaterialType::mirror, MaterialType::glass}) {
+        Material m;
+        m.type = type;
+        BSDF bsdf(m, Frame(), {reference::diffuse_f, reference::diffuse_sample_f});
+        CHECK(bsdf.is_delta());
+        CHECK(bsdf.f(Vec3(0, 0, 1), Vec3(0, 0, 1)).is_black());
+        CHECK(bsdf.pdf(Vec3(0, 0, 1), Vec3(0, 0, 1)) == 0);
+        BSDFSample s = bsdf.sample_f(Vec3(0.6, 0, 0.8), Vec2(0.01, 0.5));
+        CHECK(s.valid());
+        CHECK(s.is_delta);
+    }
 }
 
 TEST_CASE("bsdf_at turns the frame to the side the ray came from (two-sided), except for glass") {
