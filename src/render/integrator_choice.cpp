@@ -65,12 +65,18 @@ std::string integrator_note(IntegratorKind kind, const Scene& scene,
 
 std::unique_ptr<Integrator> make_integrator(IntegratorKind kind) {
     switch (kind) {
-        case IntegratorKind::normals: return make_normals_integrator();
-        case IntegratorKind::depth: return make_depth_integrator();
-        case IntegratorKind::direct: return make_direct_integrator();
-        case IntegratorKind::whitted: return make_whitted_integrator();
-        case IntegratorKind::path: return make_path_integrator();
-        default: break;
+        case IntegratorKind::normals:
+            return make_normals_integrator();
+        case IntegratorKind::depth:
+            return make_depth_integrator();
+        case IntegratorKind::direct:
+            return make_direct_integrator();
+        case IntegratorKind::whitted:
+            return make_whitted_integrator();
+        case IntegratorKind::path:
+            return make_path_integrator();
+        default:
+            break;
     }
     throw std::logic_error(std::string("integrator '") + to_string(kind) + "' is not available");
 }

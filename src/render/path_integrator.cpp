@@ -30,6 +30,8 @@ class PathIntegrator final : public Integrator {
 
 }  // namespace
 
-std::unique_ptr<Integrator> make_path_integrator() { return std::make_unique<PathIntegrator>(); }
+std::unique_ptr<Integrator> make_path_integrator() {
+    return std::make_unique<PathIntegrator>();
+}
 
 }  // namespace pt

@@ -10,7 +10,9 @@
 namespace pt {
 namespace {
 
-double alpha_of(const Material& m) { return std::max(m.roughness, ggx::kMinAlpha); }
+double alpha_of(const Material& m) {
+    return std::max(m.roughness, ggx::kMinAlpha);
+}
 
 /// The microfacet conductor: F(wo . m) D(m) G2 / (4 cos_o cos_i), reflection only.
 Color microfacet_f(const Material& m, const Vec3& wo, const Vec3& wi) {

@@ -28,7 +28,8 @@ std::vector<std::string> Effects::names() const {
 
 std::string Effects::to_string() const {
     std::string s;
-    for (const std::string& n : names()) s += (s.empty() ? "" : ", ") + n;
+    for (const std::string& n : names())
+        s += (s.empty() ? "" : ", ") + n;
     return s.empty() ? "none" : s;
 }
 
@@ -57,15 +58,16 @@ bool scene_can_occlude(const Scene& scene) {
         const Sphere& s = scene.spheres[0].sphere;
         double camera_distance = (scene.camera.position - s.center).norm();
         if (camera_distance >= s.radius + scene.camera.lens_radius) return false;
-        return !all_lights_within(
-            scene, [&](const Vec3& p) { return (p - s.center).norm() < s.radius; });
+        return !all_lights_within(scene,
+                                  [&](const Vec3& p) { return (p - s.center).norm() < s.radius; });
     }
     // Triangles only. Each one's plane with the side the other vertices lie
     // on; a scene is convex when no plane has vertices on both sides.
     // Quadratic, so only for small scenes; a non-convex scene usually fails
     // at the first triangle.
     if (scene.triangles.size() > 4096) return true;
-    const double tolerance = 1e-9 * std::max(scene.bounds.extent().norm(), 1e-300);
+    // OBJ coordinates arrive as floats: planar quads are planar to ~1e-7.
+    const double tolerance = 1e-6 * std::max(scene.bounds.extent().norm(), 1e-300);
     struct Plane {
         Vec3 n;   ///< unit normal pointing away from the vertices
         Vec3 p0;  ///< a point of the plane
@@ -113,10 +115,18 @@ Effects analyze_effects(const Scene& scene, const RenderSettings& settings) {
     bool mirror = false, glass = false, glossy = false;
     for (uint32_t i = 0; i < scene.primitive_count(); ++i) {
         switch (scene.material_of(i).type) {
-            case MaterialType::diffuse: any_nonspecular = true; break;
-            case MaterialType::microfacet: any_nonspecular = glossy = true; break;
-            case MaterialType::mirror: any_specular = mirror = true; break;
-            case MaterialType::glass: any_specular = glass = true; break;
+            case MaterialType::diffuse:
+                any_nonspecular = true;
+                break;
+            case MaterialType::microfacet:
+                any_nonspecular = glossy = true;
+                break;
+            case MaterialType::mirror:
+                any_specular = mirror = true;
+                break;
+            case MaterialType::glass:
+                any_specular = glass = true;
+                break;
         }
     }
     const bool area = !scene.emitters.empty(), environment = scene.environment.has_value();

@@ -45,9 +45,10 @@ struct Effects {
     bool mirror = false;              ///< perfect specular reflection
     bool glossy = false;              ///< rough (microfacet) reflection
     bool refraction = false;          ///< glass
-    bool diffuse_interreflection = false;  ///< light bouncing between non-specular surfaces (-m >= 2)
+    bool diffuse_interreflection =
+        false;              ///< light bouncing between non-specular surfaces (-m >= 2)
     bool caustics = false;  ///< light from area or sky lights focused by mirrors or glass (-m >= 2)
-    bool depth_of_field = false;      ///< thin lens (-b > 0)
+    bool depth_of_field = false;  ///< thin lens (-b > 0)
 
     /// Names of the effects present, in a fixed order ("area_lights", ...).
     std::vector<std::string> names() const;

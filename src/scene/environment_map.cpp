@@ -55,14 +55,15 @@ Color EnvironmentMap::Le(const Vec3& w) const {
 }
 
 EnvironmentMap::Sample EnvironmentMap::sample(Vec2 u) const {
-    double pdf_uv = 0;
-    Vec2 uv = distribution_.sample_continuous(u, &pdf_uv);
-    double sin_theta = std::sin(uv.y * kPi);
+    Vec2 uv = distribution_.sample_continuous(u, nullptr);
     Sample s;
     s.wi = uv_to_direction(uv);
     s.L = Le(s.wi);
-    // At the poles the map is singular; such samples carry no weight.
-    s.pdf = sin_theta > 0 ? pdf_uv / (2 * kPi * kPi * sin_theta) : 0.0;
+    // The density of the direction as pdf() gives it, so that MIS weights
+    // agree exactly even when rounding in uv -> direction -> uv moves a
+    // sample on a pixel's edge into its neighbour. At the poles the map is
+    // singular; such samples carry no weight (pdf 0).
+    s.pdf = pdf(s.wi);
     return s;
 }
 

@@ -237,12 +237,20 @@ class EnvironmentMapLight final : public Light {
 
     double pdf_Li(const LightSampleContext&, const Vec3& wi, const Vec3&,
                   const Vec3&) const override {
-        return map_.pdf(wi.unit());
+        return map_.pdf(unit(wi));
     }
 
-    Color Le(const Vec3& direction) const override { return map_.Le(direction.unit()); }
+    Color Le(const Vec3& direction) const override { return map_.Le(unit(direction)); }
 
   private:
+    /// w / |w|, but w itself when it is unit already: renormalising would move
+    /// a direction on a pixel's edge into the neighbour, and the radiance and
+    /// density of a sample would no longer be those of its direction.
+    static Vec3 unit(const Vec3& w) {
+        double n2 = w.norm2();
+        return std::fabs(n2 - 1.0) < 1e-12 ? w : w / std::sqrt(n2);
+    }
+
     EnvironmentMap map_;
     FarAway far_;
 };

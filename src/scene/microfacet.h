@@ -61,7 +61,9 @@ inline double lambda(const Vec3& w, double alpha) {
 }
 
 /// Fraction of facets (of normals visible from w's side) not masked from w.
-inline double G1(const Vec3& w, double alpha) { return 1.0 / (1.0 + lambda(w, alpha)); }
+inline double G1(const Vec3& w, double alpha) {
+    return 1.0 / (1.0 + lambda(w, alpha));
+}
 
 /// Height-correlated masking-shadowing of wo and wi.
 inline double G2(const Vec3& wo, const Vec3& wi, double alpha) {
@@ -103,6 +105,8 @@ inline double reflection_pdf(const Vec3& wo, const Vec3& wi, double alpha) {
 }
 
 /// wo mirrored about the unit normal m: 2 (wo . m) m - wo.
-inline Vec3 reflect(const Vec3& wo, const Vec3& m) { return 2.0 * dot(wo, m) * m - wo; }
+inline Vec3 reflect(const Vec3& wo, const Vec3& m) {
+    return 2.0 * dot(wo, m) * m - wo;
+}
 
 }  // namespace pt::ggx

@@ -67,8 +67,7 @@ Color at_least_one_bounce_radiance(const RenderContext& context, const Ray& ray,
         // 2. The next ray: to continue the path, or (at the last bounce) only
         //    for the emission it finds, which has `bounces` bounces too.
         const bool continues = bounces < settings.max_depth;
-        const bool find_emission =
-            counted && paths.emission && (bsdf.is_delta() || bsdf_emission);
+        const bool find_emission = counted && paths.emission && (bsdf.is_delta() || bsdf_emission);
         if (!continues && !find_emission) break;
         BSDFSample bs = bsdf.sample_f(wo, rng.next_2d());
         if (!bs.valid() || bs.f.is_black()) break;
