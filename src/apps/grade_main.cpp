@@ -27,11 +27,12 @@ struct GradeOptions {
     int threads = std::max(1u, std::thread::hardware_concurrency());
     std::vector<int> parts;          ///< empty = all parts with a manifest
     std::vector<std::string> tasks;  ///< empty = all tasks
+    double timeout = 600;            ///< seconds per task in its own process; 0 = in this process
     bool quiet = false, help = false, list_checks = false;
 };
 
 const char* kUsage =
-    "usage: grade [--out DIR] [--seed N] [--part N,...] [--task ID,...] [-t N] [-q]\n"
+    "usage: grade [--out DIR] [--seed N] [--part N,...] [--task ID,...] [-t N] [-q] [--timeout S]\n"
     "             [--cache DIR | --no-cache] [--manifests DIR] [--assets DIR] [--list-checks]\n"
     "Grades the student code this build was made with (-DPT_STUDENT_DIR) against the reference.\n"
     "  --out DIR        where report.md, report.json, report.html and images/ go    "
@@ -42,6 +43,8 @@ const char* kUsage =
     "  --task ID,...    grade only these tasks, e.g. part1.3                        [all]\n"
     "  -t N             render threads (results do not depend on it)               [all cores]\n"
     "  -q               no per-task lines\n"
+    "  --timeout S      each task runs in its own process and fails after S seconds;\n"
+    "                   a crash fails only its task; 0 = no child processes       [600]\n"
     "  --cache DIR      converged reference renders are cached here                 "
     "[BUILD/grade_cache]\n"
     "  --no-cache       render the references anew\n"
@@ -83,27 +86,29 @@ GradeOptions parse(const std::vector<std::string>& args) {
             if (i + 1 >= args.size()) throw InputError(a + ": missing value");
             return args[++i];
         };
-        if (a == "-h" || a == "--help")
+        if (a == "-h" || a == "--help") {
             o.help = true;
-        else if (a == "--list-checks")
+        } else if (a == "--list-checks") {
             o.list_checks = true;
-        else if (a == "-q")
+        } else if (a == "-q") {
             o.quiet = true;
-        else if (a == "--out")
+        } else if (a == "--out") {
             o.out_dir = value();
-        else if (a == "--seed")
+        } else if (a == "--seed") {
             o.seed = uint64_t(parse_int(a, value(), 0, (1ll << 62)));
-        else if (a == "-t")
+        } else if (a == "-t") {
             o.threads = int(parse_int(a, value(), 1, 1024));
-        else if (a == "--cache")
+        } else if (a == "--timeout") {
+            o.timeout = double(parse_int(a, value(), 0, 86400));
+        } else if (a == "--cache") {
             o.cache_dir = value();
-        else if (a == "--no-cache")
+        } else if (a == "--no-cache") {
             o.cache_dir.clear();
-        else if (a == "--manifests")
+        } else if (a == "--manifests") {
             o.manifests_dir = value();
-        else if (a == "--assets")
+        } else if (a == "--assets") {
             o.assets_dir = value();
-        else if (a == "--part") {
+        } else if (a == "--part") {
             for (const std::string& p : split(value()))
                 o.parts.push_back(int(parse_int("--part", p, 1, 5)));
         } else if (a == "--task") {
@@ -120,9 +125,9 @@ void print_task(const TaskResult& t) {
     const char* word = t.status == TaskStatus::pass
                            ? "PASS"
                            : (t.status == TaskStatus::fail ? "FAIL" : "NOT IMPLEMENTED");
-    std::printf("grade: %-8s %-34s %-15s %5s / %-4s %s\n", t.id.c_str(), t.name.c_str(), word,
+    std::printf("grade: %-8s %-15s %5s / %-4s %s: %s\n", t.id.c_str(), word,
                 format_points(t.points).c_str(), format_points(t.max_points).c_str(),
-                t.message.c_str());
+                t.name.c_str(), t.message.c_str());
     std::fflush(stdout);
 }
 
@@ -177,7 +182,7 @@ int run(const GradeOptions& o) {
     if (!o.quiet)
         std::printf("grade: student code %s, seed %llu\n", PT_STUDENT_DIR_PATH,
                     (unsigned long long)o.seed);
-    GradeReport report = grade_all(manifests, env, o.quiet ? nullptr : print_task);
+    GradeReport report = grade_all(manifests, env, o.quiet ? nullptr : print_task, o.timeout);
     report.notes.insert(report.notes.begin(), notes.begin(), notes.end());
     report.student_dir = PT_STUDENT_DIR_PATH;
     write_reports(report, o.out_dir);

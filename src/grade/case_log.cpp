@@ -61,13 +61,13 @@ TaskResult CaseLog::finish(const TaskSpec& spec, int max_mismatches) const {
     r.comparison = "<=";
     r.threshold = max_mismatches;
     r.status = mismatches() <= max_mismatches ? TaskStatus::pass : TaskStatus::fail;
-    std::string allowed_note;
-    if (allowed_count() > 0)
-        allowed_note =
-            " (" + std::to_string(allowed_count()) + " disagreements inside the edge band allowed)";
     if (r.status == TaskStatus::pass) {
-        r.message = "agrees with the reference on " + std::to_string(cases() - mismatches()) +
-                    " of " + std::to_string(cases()) + " cases" + allowed_note;
+        int agreed = cases() - mismatches() - allowed_count();
+        r.message = "agrees with the reference on " + std::to_string(agreed) + " of " +
+                    std::to_string(cases()) + " cases";
+        if (allowed_count() > 0)
+            r.message += "; the other " + std::to_string(allowed_count()) +
+                         " lie in the edge band, where a one-ulp difference may flip the answer";
     } else {
         std::string first;
         for (const Category& c : categories_) {

@@ -6,6 +6,7 @@
 #include "core/error.h"
 #include "core/timer.h"
 #include "grade/check_registry.h"
+#include "grade/isolation.h"
 
 namespace pt {
 
@@ -64,7 +65,7 @@ TaskResult grade_task(const TaskSpec& spec, const GradeEnvironment& env) {
 }
 
 GradeReport grade_all(const std::vector<PartManifest>& manifests, const GradeEnvironment& env,
-                      void (*on_task)(const TaskResult&)) {
+                      void (*on_task)(const TaskResult&), double isolate_timeout) {
     Timer timer;
     GradeReport report;
     report.seed = env.seed;
@@ -76,7 +77,9 @@ GradeReport grade_all(const std::vector<PartManifest>& manifests, const GradeEnv
         report.parts.push_back("Part " + std::to_string(m.part) +
                                (m.title.empty() ? "" : ": " + m.title));
         for (const TaskSpec& spec : m.tasks) {
-            report.tasks.push_back(grade_task(spec, env));
+            report.tasks.push_back(isolate_timeout > 0
+                                       ? grade_task_isolated(spec, env, isolate_timeout)
+                                       : grade_task(spec, env));
             if (on_task) on_task(report.tasks.back());
         }
     }

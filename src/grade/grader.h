@@ -37,8 +37,10 @@ struct GradeReport {
 TaskResult grade_task(const TaskSpec& spec, const GradeEnvironment& env);
 
 /// Grades every task of `manifests` (in order); `on_task` (may be null) is
-/// called after each task, for progress lines.
+/// called after each task, for progress lines. With isolate_timeout > 0
+/// every task runs in a child process with that many seconds to finish
+/// (isolation.h); with 0 they run in this process.
 GradeReport grade_all(const std::vector<PartManifest>& manifests, const GradeEnvironment& env,
-                      void (*on_task)(const TaskResult&) = nullptr);
+                      void (*on_task)(const TaskResult&) = nullptr, double isolate_timeout = 0);
 
 }  // namespace pt

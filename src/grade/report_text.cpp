@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "grade/report.h"
+#include "grade/task_json.h"
 
 namespace pt {
 
@@ -17,19 +18,23 @@ std::string format_points(double points) {
 
 std::string format_figure(const TaskResult& r) {
     if (r.status == TaskStatus::not_implemented || std::isnan(r.value)) return "-";
-    char buf[128];
-    std::snprintf(buf, sizeof buf, "%s %.4g %s %.4g", r.metric.c_str(), r.value,
-                  r.comparison.c_str(), r.threshold);
+    // The relation that holds, so that a failing figure reads "4.7 > 1e-06".
+    bool at_most = r.comparison == "<=";
+    bool holds = at_most ? r.value <= r.threshold : r.value >= r.threshold;
+    const char* op = holds ? (at_most ? "<=" : ">=") : (at_most ? ">" : "<");
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "%s %.4g %s %.4g", r.metric.c_str(), r.value, op, r.threshold);
     return buf;
 }
 
 namespace {
 
-/// Table cells may not contain '|' or line breaks.
-std::string md_cell(std::string s) {
-    for (char& c : s)
-        if (c == '|' || c == '\n') c = c == '|' ? '/' : ' ';
-    return s;
+/// Table cells may not contain line breaks, and '|' must be escaped.
+std::string md_cell(const std::string& s) {
+    std::string out;
+    for (char c : s)
+        out += c == '|' ? std::string("\\|") : std::string(1, c == '\n' ? ' ' : c);
+    return out;
 }
 
 const char* status_word(TaskStatus s) {
@@ -99,40 +104,8 @@ nlohmann::json json_report(const GradeReport& report) {
     j["parts"] = report.parts;
     j["notes"] = report.notes;
     j["tasks"] = json::array();
-    for (const TaskResult& t : report.tasks) {
-        json task = {{"part", t.part},
-                     {"id", t.id},
-                     {"name", t.name},
-                     {"check", t.check},
-                     {"type", to_string(t.type)},
-                     {"status", to_string(t.status)},
-                     {"points", t.points},
-                     {"max_points", t.max_points},
-                     {"metric", t.metric},
-                     {"comparison", t.comparison},
-                     {"threshold", t.threshold},
-                     {"message", t.message},
-                     {"details", t.details},
-                     {"seconds", t.seconds}};
-        // JSON has no NaN or infinity: an unmeasured figure is null.
-        task["value"] = std::isfinite(t.value) ? json(t.value) : json(nullptr);
-        if (!std::isfinite(t.threshold)) task["threshold"] = nullptr;
-        task["images"] = json::array();
-        for (const ImageCaseResult& c : t.images) {
-            json numbers = json::object();
-            for (const auto& [name, value] : c.numbers)
-                numbers[name] = value;
-            task["images"].push_back({{"label", c.label},
-                                      {"pass", c.pass},
-                                      {"message", c.message},
-                                      {"student", c.student_png},
-                                      {"reference", c.reference_png},
-                                      {"reference_same_spp", c.reference_same_spp_png},
-                                      {"heatmap", c.heatmap_png},
-                                      {"numbers", numbers}});
-        }
-        j["tasks"].push_back(task);
-    }
+    for (const TaskResult& t : report.tasks)
+        j["tasks"].push_back(task_to_json(t));
     return j;
 }
 

@@ -169,3 +169,31 @@ TEST_CASE("bad task parameters are the grader's error (InputError), not the stud
     PartManifest m = read_manifest(path, 1);
     CHECK_THROWS_AS(grade_task(m.tasks[0], environment(reference_stages(), 1)), InputError);
 }
+
+TEST_CASE("isolated tasks: a crash or an endless loop fails only its task") {
+    Stages s = reference_stages();
+    s.intersect.intersect_sphere = [](const Sphere&, const Ray&) -> std::optional<Hit> {
+        volatile int* null = nullptr;
+        Hit hit;
+        hit.t = *null;  // a segmentation fault
+        return hit;
+    };
+    s.intersect.intersect_triangle = [](const Triangle&, const Ray&) -> std::optional<Hit> {
+        for (volatile int i = 0;; i = i + 1) {
+        }
+    };
+    GradeReport report = grade_all({part1_manifest()}, environment(s, 1), nullptr, 3.0);
+    REQUIRE(report.tasks.size() == 4);
+    CHECK(report.tasks[0].status == TaskStatus::pass);
+    CHECK(report.tasks[1].status == TaskStatus::pass);
+    CHECK(report.tasks[1].images.size() == 2);  // the result survives the trip through the pipe
+    CHECK(report.tasks[2].status == TaskStatus::fail);
+    CHECK(report.tasks[2].message.find("timed out") != std::string::npos);
+    CHECK(report.tasks[3].status == TaskStatus::fail);
+    CHECK(report.tasks[3].message.find("crashed") != std::string::npos);
+    // Not implemented survives the trip too.
+    Stages stubs = stub_stages();
+    GradeReport stub_report = grade_all({part1_manifest()}, environment(stubs, 1), nullptr, 30.0);
+    for (const TaskResult& t : stub_report.tasks)
+        CHECK(t.status == TaskStatus::not_implemented);
+}
