@@ -91,6 +91,15 @@ TaskResult check_image(const TaskSpec& spec, const GradeEnvironment& env) {
         // The student first: a stub fails at once, before any reference is rendered.
         RenderResult student = render_case(scene, c, mixed, c.settings.spp, env.seed, env.threads);
         ReferenceRenders ref = reference_renders(scene, c, runs, env);
+        if (c.converged_spp == c.settings.spp) {
+            // A case without a converged reference must be free of noise: the
+            // reference renders with other seeds must be the same image.
+            for (const Image& q : ref.runs)
+                if (q.data() != ref.converged.data())
+                    throw InputError(where + ": params.cases[" + std::to_string(i) +
+                                     "]: the render is noisy (it depends on the seed), so converged_spp must "
+                                     "be at least 64, not equal to spp");
+        }
         Image student_bias =
             c.bias_spp == c.settings.spp
                 ? student.image
