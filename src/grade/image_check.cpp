@@ -96,9 +96,10 @@ TaskResult check_image(const TaskSpec& spec, const GradeEnvironment& env) {
             // reference renders with other seeds must be the same image.
             for (const Image& q : ref.runs)
                 if (q.data() != ref.converged.data())
-                    throw InputError(where + ": params.cases[" + std::to_string(i) +
-                                     "]: the render is noisy (it depends on the seed), so converged_spp must "
-                                     "be at least 64, not equal to spp");
+                    throw InputError(
+                        where + ": params.cases[" + std::to_string(i) +
+                        "]: the render is noisy (it depends on the seed), so converged_spp must "
+                        "be at least 64, not equal to spp");
         }
         Image student_bias =
             c.bias_spp == c.settings.spp

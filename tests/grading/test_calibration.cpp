@@ -90,8 +90,9 @@ TEST_CASE("calibration: the reference and the fixtures over many seeds" * doctes
         int n = std::min(seeds, 50);
         if (fx.failing_task == "part1.2") {
             Figures f = measure(fixtures::stages_with(fx), n);
-            std::printf("%s, %d seeds: %d failures\n  ratio:   %s\n  worst z: %s\n", fx.name.c_str(), n,
-                        f.failures, summary(f.ratio).c_str(), summary(f.worst_z).c_str());
+            std::printf("%s, %d seeds: %d failures\n  ratio:   %s\n  worst z: %s\n",
+                        fx.name.c_str(), n, f.failures, summary(f.ratio).c_str(),
+                        summary(f.worst_z).c_str());
             continue;
         }
         int failures = 0;
@@ -99,7 +100,9 @@ TEST_CASE("calibration: the reference and the fixtures over many seeds" * doctes
         for (const TaskSpec& t : part1_manifest().tasks)
             if (t.id == fx.failing_task)
                 for (int seed = 1; seed <= n; ++seed)
-                    failures += grade_task(t, environment(student, uint64_t(seed))).status != TaskStatus::pass;
-        std::printf("%s, %d seeds: %d failures of %s\n", fx.name.c_str(), n, failures, fx.failing_task.c_str());
+                    failures += grade_task(t, environment(student, uint64_t(seed))).status !=
+                                TaskStatus::pass;
+        std::printf("%s, %d seeds: %d failures of %s\n", fx.name.c_str(), n, failures,
+                    fx.failing_task.c_str());
     }
 }
