@@ -1,0 +1,216 @@
+// grade: grades the student stages of this build (made with
+// -DPT_STUDENT_DIR=...) against the reference, task by task, from the
+// manifests assignments/partN/grading.json, and writes report.md,
+// report.json and report.html into --out DIR. Exit codes: 0 every task
+// passes, 1 some task fails or is not implemented, 2 bad input (flags,
+// manifests, scenes). See docs/grading.md.
+#include <algorithm>
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+#include <thread>
+
+#include "core/error.h"
+#include "grade/check_registry.h"
+#include "grade/grader.h"
+#include "grade/report.h"
+
+namespace pt {
+namespace {
+
+struct GradeOptions {
+    std::string out_dir = "grade_report";
+    std::string manifests_dir = PT_DEFAULT_ASSIGNMENTS_DIR;
+    std::string assets_dir = PT_DEFAULT_ASSETS_DIR;
+    std::string cache_dir = PT_DEFAULT_GRADE_CACHE_DIR;
+    uint64_t seed = 1;
+    int threads = std::max(1u, std::thread::hardware_concurrency());
+    std::vector<int> parts;          ///< empty = all parts with a manifest
+    std::vector<std::string> tasks;  ///< empty = all tasks
+    double timeout = 600;            ///< seconds per task in its own process; 0 = in this process
+    bool quiet = false, help = false, list_checks = false;
+};
+
+const char* kUsage =
+    "usage: grade [--out DIR] [--seed N] [--part N,...] [--task ID,...] [-t N] [-q] [--timeout S]\n"
+    "             [--cache DIR | --no-cache] [--manifests DIR] [--assets DIR] [--list-checks]\n"
+    "Grades the student code this build was made with (-DPT_STUDENT_DIR) against the reference.\n"
+    "  --out DIR        where report.md, report.json, report.html and images/ go    "
+    "[grade_report]\n"
+    "  --seed N         seeds the random inputs and the student's renders           [1]\n"
+    "  --part N,...     grade only these parts                                      [all with a "
+    "manifest]\n"
+    "  --task ID,...    grade only these tasks, e.g. part1.3                        [all]\n"
+    "  -t N             render threads (results do not depend on it)               [all cores]\n"
+    "  -q               no per-task lines\n"
+    "  --timeout S      each task runs in its own process and fails after S seconds;\n"
+    "                   a crash fails only its task; 0 = no child processes       [600]\n"
+    "  --cache DIR      converged reference renders are cached here                 "
+    "[BUILD/grade_cache]\n"
+    "  --no-cache       render the references anew\n"
+    "  --manifests DIR  the folder with partN/grading.json                          [the project's "
+    "assignments/]\n"
+    "  --assets DIR     scene paths in the manifests are relative to it             [the project's "
+    "assets/]\n"
+    "  --list-checks    list the registered checks and their parameters\n"
+    "Exit codes: 0 every task passes, 1 some task fails or is not implemented, 2 bad input.\n";
+
+std::vector<std::string> split(const std::string& list) {
+    std::vector<std::string> out;
+    std::stringstream s(list);
+    std::string item;
+    while (std::getline(s, item, ','))
+        if (!item.empty()) out.push_back(item);
+    return out;
+}
+
+long long parse_int(const std::string& flag, const std::string& v, long long lo, long long hi) {
+    size_t used = 0;
+    long long n = 0;
+    try {
+        n = std::stoll(v, &used);
+    } catch (const std::exception&) {
+        used = 0;
+    }
+    if (used != v.size() || v.empty() || n < lo || n > hi)
+        throw InputError(flag + ": expected an integer in [" + std::to_string(lo) + ", " +
+                         std::to_string(hi) + "], got '" + v + "'");
+    return n;
+}
+
+GradeOptions parse(const std::vector<std::string>& args) {
+    GradeOptions o;
+    for (size_t i = 0; i < args.size(); ++i) {
+        const std::string& a = args[i];
+        auto value = [&]() -> const std::string& {
+            if (i + 1 >= args.size()) throw InputError(a + ": missing value");
+            return args[++i];
+        };
+        if (a == "-h" || a == "--help") {
+            o.help = true;
+        } else if (a == "--list-checks") {
+            o.list_checks = true;
+        } else if (a == "-q") {
+            o.quiet = true;
+        } else if (a == "--out") {
+            o.out_dir = value();
+        } else if (a == "--seed") {
+            o.seed = uint64_t(parse_int(a, value(), 0, (1ll << 62)));
+        } else if (a == "-t") {
+            o.threads = int(parse_int(a, value(), 1, 1024));
+        } else if (a == "--timeout") {
+            o.timeout = double(parse_int(a, value(), 0, 86400));
+        } else if (a == "--cache") {
+            o.cache_dir = value();
+        } else if (a == "--no-cache") {
+            o.cache_dir.clear();
+        } else if (a == "--manifests") {
+            o.manifests_dir = value();
+        } else if (a == "--assets") {
+            o.assets_dir = value();
+        } else if (a == "--part") {
+            for (const std::string& p : split(value()))
+                o.parts.push_back(int(parse_int("--part", p, 1, 5)));
+        } else if (a == "--task") {
+            o.tasks = split(value());
+        } else {
+            throw InputError("unknown argument '" + a + "' (grade --help lists the flags)");
+        }
+    }
+    if (o.out_dir.empty()) throw InputError("--out: expected a folder");
+    return o;
+}
+
+void print_task(const TaskResult& t) {
+    const char* word = t.status == TaskStatus::pass
+                           ? "PASS"
+                           : (t.status == TaskStatus::fail ? "FAIL" : "NOT IMPLEMENTED");
+    std::printf("grade: %-8s %-15s %5s / %-4s %s: %s\n", t.id.c_str(), word,
+                format_points(t.points).c_str(), format_points(t.max_points).c_str(),
+                t.name.c_str(), t.message.c_str());
+    std::fflush(stdout);
+}
+
+int run(const GradeOptions& o) {
+    if (o.list_checks) {
+        for (const CheckInfo& c : all_checks()) {
+            std::string params;
+            for (const std::string& p : c.params)
+                params += (params.empty() ? "" : ", ") + p;
+            std::printf("%-20s %-12s %s\n%-33s params: %s\n", c.name, to_string(c.type), c.summary,
+                        "", params.c_str());
+        }
+        return kExitOk;
+    }
+    std::vector<std::string> notes;
+    std::vector<PartManifest> manifests = read_manifests(o.manifests_dir, &notes);
+    if (manifests.empty())
+        throw InputError(o.manifests_dir + ": no partN/grading.json manifest in any part");
+    if (!o.parts.empty()) {
+        for (int p : o.parts)
+            if (std::none_of(manifests.begin(), manifests.end(),
+                             [&](const PartManifest& m) { return m.part == p; }))
+                throw InputError("--part: part " + std::to_string(p) + " has no manifest");
+        manifests.erase(std::remove_if(manifests.begin(), manifests.end(),
+                                       [&](const PartManifest& m) {
+                                           return std::find(o.parts.begin(), o.parts.end(),
+                                                            m.part) == o.parts.end();
+                                       }),
+                        manifests.end());
+    }
+    if (!o.tasks.empty()) {
+        for (const std::string& id : o.tasks) {
+            bool found = false;
+            for (const PartManifest& m : manifests)
+                for (const TaskSpec& t : m.tasks)
+                    found = found || t.id == id;
+            if (!found) throw InputError("--task: no task '" + id + "' in the manifests");
+        }
+        for (PartManifest& m : manifests)
+            m.tasks.erase(std::remove_if(m.tasks.begin(), m.tasks.end(),
+                                         [&](const TaskSpec& t) {
+                                             return std::find(o.tasks.begin(), o.tasks.end(),
+                                                              t.id) == o.tasks.end();
+                                         }),
+                          m.tasks.end());
+    }
+
+    Stages student = make_stages(StageSet::all());
+    Stages reference = make_stages(StageSet::none());
+    GradeEnvironment env{student,      reference,   o.seed,   o.threads,
+                         o.assets_dir, o.cache_dir, o.out_dir};
+    if (!o.quiet)
+        std::printf("grade: student code %s, seed %llu\n", PT_STUDENT_DIR_PATH,
+                    (unsigned long long)o.seed);
+    GradeReport report = grade_all(manifests, env, o.quiet ? nullptr : print_task, o.timeout);
+    report.notes.insert(report.notes.begin(), notes.begin(), notes.end());
+    report.student_dir = PT_STUDENT_DIR_PATH;
+    write_reports(report, o.out_dir);
+    std::printf(
+        "grade: %s / %s points, %s; reports in %s/report.{md,html,json} (%.1f s)\n",
+        format_points(report.points()).c_str(), format_points(report.max_points()).c_str(),
+        report.all_passed() ? "every task passes" : "some tasks fail or are not implemented",
+        o.out_dir.c_str(), report.seconds);
+    return report.all_passed() ? kExitOk : kExitFailure;
+}
+
+}  // namespace
+}  // namespace pt
+
+int main(int argc, char** argv) {
+    using namespace pt;
+    try {
+        GradeOptions o = parse(std::vector<std::string>(argv + 1, argv + argc));
+        if (o.help) {
+            std::cout << kUsage;
+            return kExitOk;
+        }
+        return run(o);
+    } catch (const InputError& e) {
+        std::cerr << "grade: error: " << e.what() << "\n";
+        return kExitBadInput;
+    } catch (const std::exception& e) {
+        std::cerr << "grade: internal error: " << e.what() << "\n";
+        return kExitFailure;
+    }
+}

@@ -1,0 +1,90 @@
+#include "grade/grader.h"
+
+#include <cmath>
+#include <ctime>
+
+#include "core/error.h"
+#include "core/timer.h"
+#include "grade/check_registry.h"
+#include "grade/isolation.h"
+
+namespace pt {
+
+double GradeReport::points() const {
+    double p = 0;
+    for (const TaskResult& t : tasks)
+        p += t.points;
+    return p;
+}
+
+double GradeReport::max_points() const {
+    double p = 0;
+    for (const TaskResult& t : tasks)
+        p += t.max_points;
+    return p;
+}
+
+bool GradeReport::all_passed() const {
+    if (tasks.empty()) return false;
+    for (const TaskResult& t : tasks)
+        if (t.status != TaskStatus::pass) return false;
+    return true;
+}
+
+TaskResult grade_task(const TaskSpec& spec, const GradeEnvironment& env) {
+    Timer timer;
+    const CheckInfo* check = find_check(spec.check);
+    if (!check)
+        throw InputError(spec.manifest + ": task " + spec.id + ": unknown check \"" + spec.check +
+                         "\"");
+    TaskResult r;
+    try {
+        r = check->run(spec, env);
+    } catch (const NotImplemented& e) {
+        r = TaskResult{};
+        r.status = TaskStatus::not_implemented;
+        r.value = NAN;
+        r.message = e.what();
+    } catch (const InputError&) {
+        throw;
+    } catch (const std::exception& e) {
+        r = TaskResult{};
+        r.status = TaskStatus::fail;
+        r.value = NAN;
+        r.message = std::string("the student code threw an exception: ") + e.what();
+    }
+    r.part = spec.part;
+    r.id = spec.id;
+    r.name = spec.name;
+    r.check = spec.check;
+    r.type = spec.type;
+    r.max_points = spec.points;
+    r.points = r.status == TaskStatus::pass ? spec.points : 0;
+    r.seconds = timer.seconds();
+    return r;
+}
+
+GradeReport grade_all(const std::vector<PartManifest>& manifests, const GradeEnvironment& env,
+                      void (*on_task)(const TaskResult&), double isolate_timeout) {
+    Timer timer;
+    GradeReport report;
+    report.seed = env.seed;
+    std::time_t now = std::time(nullptr);
+    char date[64];
+    std::strftime(date, sizeof date, "%Y-%m-%d %H:%M:%S", std::localtime(&now));
+    report.date = date;
+    for (const PartManifest& m : manifests) {
+        report.parts.push_back("Part " + std::to_string(m.part) +
+                               (m.title.empty() ? "" : ": " + m.title));
+        for (const TaskSpec& spec : m.tasks) {
+            report.tasks.push_back(isolate_timeout > 0
+                                       ? grade_task_isolated(spec, env, isolate_timeout)
+                                       : grade_task(spec, env));
+            if (on_task) on_task(report.tasks.back());
+        }
+    }
+    report.seconds = timer.seconds();
+    return report;
+}
+
+}  // namespace pt

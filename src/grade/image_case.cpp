@@ -1,0 +1,174 @@
+#include "grade/image_case.h"
+
+#include <algorithm>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "core/error.h"
+#include "render/integrator.h"
+#include "render/render_context.h"
+#include "scene/scene_loader.h"
+
+namespace pt {
+namespace {
+
+using nlohmann::json;
+
+int positive_int(const json& j, const std::string& key, const std::string& where) {
+    if (!j[key].is_number_integer() || j[key].get<long long>() < 1 ||
+        j[key].get<long long>() > 1 << 20)
+        throw InputError(where + "." + key + ": expected a positive integer, got " + j[key].dump());
+    return j[key].get<int>();
+}
+
+std::string read_text(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return "";
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+std::string directory_of(const std::string& path) {
+    size_t slash = path.find_last_of('/');
+    return slash == std::string::npos ? "." : path.substr(0, slash);
+}
+
+/// The text of an OBJ file and of the MTL files it names.
+std::string obj_with_materials(const std::string& path) {
+    std::string text = read_text(path);
+    std::istringstream lines(text);
+    std::string line, all = text;
+    while (std::getline(lines, line)) {
+        if (line.rfind("mtllib ", 0) == 0)
+            all += read_text(directory_of(path) + "/" + line.substr(7));
+    }
+    return all;
+}
+
+uint64_t fnv1a(const std::string& s, uint64_t h = 1469598103934665603ull) {
+    for (unsigned char c : s)
+        h = (h ^ c) * 1099511628211ull;
+    return h;
+}
+
+}  // namespace
+
+ImageCase parse_image_case(const json& j, const std::string& where) {
+    if (!j.is_object()) throw InputError(where + ": expected an object");
+    const std::set<std::string> keys = {
+        "label",     "scene",  "integrator",         "width",
+        "height",    "spp",    "converged_spp",      "light_samples",
+        "max_depth", "direct", "accumulate_bounces", "max_mean_spp",
+        "bias_spp"};
+    for (auto it = j.begin(); it != j.end(); ++it)
+        if (!keys.count(it.key())) throw InputError(where + ": unknown key \"" + it.key() + "\"");
+    for (const char* k : {"scene", "integrator", "spp"})
+        if (!j.contains(k)) throw InputError(where + ": missing \"" + std::string(k) + "\"");
+    ImageCase c;
+    if (!j["scene"].is_string()) throw InputError(where + ".scene: expected a path");
+    c.scene = j["scene"].get<std::string>();
+    c.label = j.value("label", c.scene);
+    std::string kind = j["integrator"].is_string() ? j["integrator"].get<std::string>() : "";
+    bool found = false;
+    for (IntegratorKind k : {IntegratorKind::normals, IntegratorKind::depth,
+                             IntegratorKind::whitted, IntegratorKind::direct, IntegratorKind::path})
+        if (kind == to_string(k)) c.settings.integrator = k, found = true;
+    if (!found)
+        throw InputError(where + ".integrator: expected normals, depth, whitted, direct or path");
+    c.settings.spp = positive_int(j, "spp", where);
+    if (j.contains("width")) c.width = positive_int(j, "width", where);
+    if (j.contains("height")) c.height = positive_int(j, "height", where);
+    c.converged_spp = j.contains("converged_spp") ? positive_int(j, "converged_spp", where) : 1024;
+    if (c.converged_spp != c.settings.spp && c.converged_spp < 64)
+        throw InputError(
+            where +
+            ".converged_spp: expected at least 64 (the variance comes from 64 batches), or "
+            "equal to spp for a render without noise");
+    if (j.contains("bias_spp")) {
+        c.bias_spp = positive_int(j, "bias_spp", where);
+    } else {
+        c.bias_spp = c.settings.spp == c.converged_spp
+                         ? c.settings.spp
+                         : std::min(16 * c.settings.spp, c.converged_spp);
+    }
+    if (j.contains("light_samples"))
+        c.settings.light_samples = positive_int(j, "light_samples", where);
+    if (j.contains("max_depth")) c.settings.max_depth = positive_int(j, "max_depth", where);
+    if (j.contains("accumulate_bounces")) {
+        if (!j["accumulate_bounces"].is_boolean())
+            throw InputError(where + ".accumulate_bounces: expected true or false");
+        c.settings.accumulate_bounces = j["accumulate_bounces"].get<bool>();
+    }
+    if (j.contains("direct")) {
+        std::string d = j["direct"].is_string() ? j["direct"].get<std::string>() : "";
+        found = false;
+        for (DirectStrategy s :
+             {DirectStrategy::light, DirectStrategy::hemisphere, DirectStrategy::mis})
+            if (d == to_string(s)) c.settings.direct = s, found = true;
+        if (!found) throw InputError(where + ".direct: expected light, hemisphere or mis");
+    }
+    if (j.contains("max_mean_spp")) {
+        if (!j["max_mean_spp"].is_number())
+            throw InputError(where + ".max_mean_spp: expected a number");
+        c.max_mean_spp = j["max_mean_spp"].get<double>();
+        c.settings.adaptive = true;
+    }
+    return c;
+}
+
+Scene load_case_scene(const ImageCase& c, const std::string& assets_dir) {
+    Scene scene = load_scene(assets_dir + "/" + c.scene);
+    scene.film_width = c.width;
+    scene.film_height = c.height;
+    scene.camera.aspect = double(c.width) / c.height;
+    scene.camera.finalize(scene.path + ": camera");
+    return scene;
+}
+
+std::string case_fingerprint(const ImageCase& c, const std::string& assets_dir) {
+    std::string path = assets_dir + "/" + c.scene;
+    std::string text = read_text(path);
+    if (text.empty()) throw InputError("cannot read scene " + path);
+    std::string inputs = text;
+    if (path.size() > 4 && path.substr(path.size() - 4) == ".obj") {
+        inputs = obj_with_materials(path);
+    } else {
+        try {
+            json scene = json::parse(text);
+            for (const json& o : scene.value("objects", json::array()))
+                if (o.contains("file") && o["file"].is_string())
+                    inputs +=
+                        obj_with_materials(directory_of(path) + "/" + o["file"].get<std::string>());
+        } catch (const json::exception&) {
+            // load_case_scene reports malformed scenes with their JSON path.
+        }
+    }
+    std::ostringstream settings;
+    const RenderSettings& s = c.settings;
+    settings << c.width << "x" << c.height << " " << to_string(s.integrator) << " l"
+             << s.light_samples << " m" << s.max_depth << " o" << s.accumulate_bounces << " "
+             << to_string(s.direct) << " a" << s.adaptive << " " << s.samples_per_batch << " "
+             << s.max_tolerance;
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016llx",
+                  (unsigned long long)fnv1a(settings.str(), fnv1a(inputs)));
+    return hex;
+}
+
+RenderResult render_case(const Scene& scene, const ImageCase& c, const Stages& stages, int spp,
+                         uint64_t seed, int threads) {
+    RenderSettings settings = c.settings;
+    settings.spp = spp;
+    settings.seed = seed;
+    std::unique_ptr<Integrator> integrator = make_integrator(settings.integrator);
+    std::unique_ptr<Accelerator> accelerator =
+        build_accelerator(scene, stages, AcceleratorSettings{});
+    RenderContext context{scene, *accelerator, stages, settings, *integrator};
+    RenderOptions options;
+    options.threads = threads;
+    return render_image(context, options);
+}
+
+}  // namespace pt

@@ -1,0 +1,59 @@
+// The false-failure test of the grader: the reference implementation,
+// graded as if it were a student's, must earn full marks on every one of
+// 20 seeds (DESIGN.md: Monte Carlo noise never fails a correct
+// submission). Also correct implementations written differently from the
+// reference (textbook formulas) must pass: the tolerances are not tuned to
+// the reference's exact arithmetic.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cstdio>
+
+#include "fixtures/fixtures.h"
+#include "grading_helpers.h"
+
+using namespace pt;
+using namespace pt::testing;
+
+namespace pt::fixtures::part1 {
+std::optional<Hit> moller_trumbore(const Triangle& tri, const Ray& ray, bool check_t_min,
+                                   bool swap);
+std::optional<Hit> quadratic(const Sphere& sphere, const Ray& ray, bool far_first, bool near_only);
+}  // namespace pt::fixtures::part1
+
+TEST_CASE("the reference graded as the student earns full marks on 20 of 20 seeds") {
+    const Stages& student = reference_stages();
+    int full_marks = 0;
+    double worst_ratio = 0;  // image task: student relMSE / limit, the closest call
+    for (uint64_t seed = 1; seed <= 20; ++seed) {
+        GradeReport report = grade_all({part1_manifest()}, environment(student, seed));
+        for (const TaskResult& t : report.tasks) {
+            INFO("seed " << seed << ", " << t.id << ": " << t.message);
+            CHECK(t.status == TaskStatus::pass);
+            if (t.type == TaskType::image && t.threshold > 0)
+                worst_ratio = std::max(worst_ratio, t.value / t.threshold);
+        }
+        if (report.all_passed() && report.points() == report.max_points()) ++full_marks;
+    }
+    MESSAGE("full marks on " << full_marks << " of 20 seeds; image task closest call: relMSE at "
+                             << worst_ratio * 100 << "% of its limit");
+    CHECK(full_marks == 20);
+}
+
+TEST_CASE("textbook intersection routines (not the reference's formulas) pass") {
+    Stages student = reference_stages();
+    student.intersect.intersect_triangle = [](const Triangle& t, const Ray& r) {
+        return fixtures::part1::moller_trumbore(t, r, true, false);
+    };
+    student.intersect.intersect_sphere = [](const Sphere& s, const Ray& r) {
+        return fixtures::part1::quadratic(s, r, false, false);
+    };
+    for (uint64_t seed = 1; seed <= 5; ++seed) {
+        for (const TaskSpec& spec : part1_manifest().tasks) {
+            if (spec.check != "intersect_triangle" && spec.check != "intersect_sphere") continue;
+            TaskResult r = grade_task(spec, environment(student, seed));
+            INFO("seed " << seed << ", " << spec.id << ": " << r.message);
+            CHECK(r.status == TaskStatus::pass);
+        }
+    }
+}
