@@ -61,8 +61,9 @@ Color est_radiance_global_illumination(const RenderContext& context, const Ray& 
     // and isect = context.intersect(ray):
     //  - on a miss: context.lights.environment_radiance(ray.d) if zero, else black;
     //  - on a hit: context.stages.direct.zero_bounce_radiance(context, ray, *isect)
-    //    if zero, plus at_least_one_bounce_radiance(context, ray, *isect,
-    //    Color(1.0), rng) if max_depth >= 1.
+    //    if zero, plus context.stages.global.at_least_one_bounce_radiance(
+    //    context, ray, *isect, Color(1.0), rng) if max_depth >= 1 (through
+    //    the stage table, so that each task can be graded on its own).
     (void)context, (void)ray, (void)rng;
     throw NotImplemented(4, "2", "est_radiance_global_illumination");
 }

@@ -30,6 +30,15 @@ const Slot kSlots[] = {
          to.intersect.intersect_sphere = from.intersect.intersect_sphere;
      }},
     {"bvh", Stage::bvh, [](Stages& to, const Stages& from) { to.bvh = from.bvh; }},
+    {"global", Stage::global, [](Stages& to, const Stages& from) { to.global = from.global; }},
+    {"global.at_least_one_bounce_radiance", Stage::global,
+     [](Stages& to, const Stages& from) {
+         to.global.at_least_one_bounce_radiance = from.global.at_least_one_bounce_radiance;
+     }},
+    {"global.est_radiance_global_illumination", Stage::global,
+     [](Stages& to, const Stages& from) {
+         to.global.est_radiance_global_illumination = from.global.est_radiance_global_illumination;
+     }},
 };
 
 }  // namespace

@@ -172,8 +172,8 @@ std::string skipped_code_paths(const CodePaths& p) {
     auto add = [&](bool run, const char* what) {
         if (!run) s += (s.empty() ? "" : ", ") + std::string(what);
     };
-    add(p.light_sampling, "light sampling (no light)");
-    add(p.shadow_rays, "shadow rays (nothing can cast a shadow)");
+    add(p.light_sampling, "light sampling (no light, or -m 0)");
+    add(p.shadow_rays, "shadow rays (no light sample can be blocked)");
     add(p.emission, "emission look-ups (nothing emits)");
     add(p.refraction, "refraction bookkeeping (no glass)");
     add(p.lens_sampling, "lens sampling (pinhole)");

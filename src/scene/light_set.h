@@ -9,6 +9,8 @@
 //   point (W/sr)          its position (a delta)                   1
 //   directional           its direction (a delta)                  1
 //   constant environment  a cosine-weighted direction about n      -l N
+//   environment map       a direction by luminance x sin(theta)    -l N
+//                         (2D piecewise-constant, environment_map.h)
 //
 // The change of variables from area to solid angle: a point p' on a light,
 // at distance r from the shading point p, seen at angle theta' from the

@@ -59,7 +59,8 @@ Color todo_est_radiance_global_illumination(const RenderContext& context, const 
     Color L;
     if (zero) L += context.stages.direct.zero_bounce_radiance(context, ray, *isect);
     if (context.settings.max_depth >= 1)
-        L += todo_at_least_one_bounce_radiance(context, ray, *isect, Color(1.0), rng);
+        L += context.stages.global.at_least_one_bounce_radiance(context, ray, *isect, Color(1.0),
+                                                                rng);
     return L;
 }
 
