@@ -52,10 +52,20 @@ namespace pt {
 struct Scene;
 struct AcceleratorSettings;
 
+/// The bounds a BVH uses for primitive `prim`: Scene::primitive_bounds
+/// grown on every side by 2^-32 times its largest coordinate magnitude.
+/// Moller-Trumbore is not watertight: rounding lets it report hits up to
+/// about gamma(7) |o - p0| / cos(theta) outside the triangle (a ray through a
+/// shared vertex can hit a triangle a few ulps beyond its exact box). The
+/// margin keeps every such hit inside its box for ray origins up to about
+/// 10^5 times the primitive's coordinates away (tests/bvh), at no
+/// measurable cost in culling.
+BBox padded_primitive_bounds(const Scene& scene, uint32_t prim);
+
 /// A primitive as construct_bvh sees it: its id and its bounds.
 struct BVHPrimitive {
     uint32_t id = 0;  ///< primitive id in the scene (triangles first, then spheres)
-    BBox bb;          ///< world-space bounds of the primitive
+    BBox bb;          ///< world-space bounds of the primitive (padded_primitive_bounds)
     Vec3 centroid;    ///< centre of bb: the point that decides the side of a split
 };
 

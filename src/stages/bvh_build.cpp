@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "scene/scene.h"
+#include "stages/bvh.h"
 #include "stages/flat_bvh.h"
 #include "stages/stages.h"
 
@@ -296,7 +297,7 @@ FlatBvh build_flat_bvh(const Scene& scene, const AcceleratorSettings& settings) 
 
     std::vector<BuildPrimitive> prims(n);
     for (uint32_t i = 0; i < n; ++i) {
-        BBox b = scene.primitive_bounds(i);
+        BBox b = padded_primitive_bounds(scene, i);
         BuildPrimitive& p = prims[i];
         round_box_outward(b, p.lo, p.hi);
         Vec3 c = b.centroid();

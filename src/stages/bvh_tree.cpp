@@ -14,6 +14,13 @@
 
 namespace pt {
 
+BBox padded_primitive_bounds(const Scene& scene, uint32_t prim) {
+    BBox b = scene.primitive_bounds(prim);
+    double scale = std::max(max_component(abs(b.min)), max_component(abs(b.max)));
+    Vec3 margin(std::ldexp(scale, -32));
+    return BBox(b.min - margin, b.max + margin);
+}
+
 BVHTree::BVHTree(const Scene& scene, const IntersectStage& stage) : scene_(scene), stage_(stage) {}
 
 std::optional<Hit> BVHTree::intersect_primitive(size_t i, const Ray& ray) const {
@@ -130,7 +137,7 @@ class TreeBvh final : public Accelerator, public InspectableBvh {
         for (uint32_t i = 0; i < n; ++i) {
             BVHPrimitive& p = tree_.primitives[i];
             p.id = i;
-            p.bb = scene.primitive_bounds(i);
+            p.bb = padded_primitive_bounds(scene, i);
             p.centroid = p.bb.centroid();
         }
         if (n == 0) return;
