@@ -11,6 +11,7 @@
 // function pointers, e.g. student code). A second inline triangle test,
 // such as Woop et al.'s watertight one, is one more tester class and one
 // more line in make_reference_bvh.
+#include <algorithm>
 #include <cfloat>
 #include <cmath>
 
@@ -26,59 +27,113 @@ namespace {
 
 // ---------------------------------------------------------------------------
 // The slab test
+//
+// In single precision, on the nodes' float boxes, with the double-precision
+// ray rounded so that the test stays conservative: it may report a box the
+// ray misses by a few ulps, never miss one the ray enters (Ize, "Robust BVH
+// Ray Traversal", JCGT 2013; pbrt-v3 section 3.9.2 for the error bounds).
+//
+//  - The origin is rounded to float twice, once for near planes and once
+//    for far planes, each in the direction that can only lower the near
+//    distance and raise the far one. Together they amount to growing the box
+//    by the origin's rounding error. (For a positive direction the near
+//    plane is the min plane: (b - o) * (1/d) gets smaller as o grows, so the
+//    near origin is o rounded up; the rest follows the same way.)
+//  - A computed distance (b - o) * (1/d) is within gamma(3) of the exact one
+//    for the rounded origin (three roundings: subtraction, reciprocal,
+//    product), so the far distance is scaled by 1 + 2 gamma(5) before it is
+//    compared with the near one, with room for rounding 1/d twice and for the
+//    scaling itself.
+//  - A zero direction component gives 1/d = +-inf (IEEE) and the distances
+//    +-inf, or NaN (0 * inf) when the origin lies exactly on a plane: then
+//    the ray lies in the plane, on the closed box's boundary, and the plane
+//    must constrain nothing. The comparisons below are false for NaN, so a
+//    NaN distance never replaces t_near or t_far.
+//  - -0.0: which plane is near follows the sign bit of 1/d, not d < 0, so a
+//    direction of -0.0 (1/d = -inf) enters through the max plane like any
+//    negative one.
+//  - Float range: a ray from farther than 1e30, or with every direction
+//    component below 1e-7, could have hits at t beyond float range; such
+//    rays (and every ray in a scene with coordinates beyond 1e30) are
+//    prepared so that every box test passes: correct, and as slow as a
+//    linear scan. A nonzero component so small that 1/d overflows float
+//    gets FLT_MAX for near planes (distances come out lower) and infinity
+//    for far planes (higher).
 
-/// Rounding allowance on far-plane distances. A computed distance
-/// (b - o) * (1/d) is within gamma(3) of the true one (three roundings:
-/// the subtraction, the reciprocal, the product; pbrt-v3 section 3.9.2), so
-/// scaling the far planes by 1 + 2 gamma(6) keeps every computed near
-/// distance below the computed far distance whenever the true ones are in
-/// that order, with room for the rounding of the factor itself (Ize 2013).
-const double kFarScale = 1.0 + 2.0 * gamma(6);
+constexpr float gamma_f(int n) {
+    return n * 0x1p-24f / (1 - n * 0x1p-24f);
+}
+const float kFarScale = 1.0f + 2.0f * gamma_f(5);
 
-/// A ray prepared for slab tests: reciprocal directions and which box
-/// corner is nearer on each axis.
+/// The float nearest to x on the side of -infinity / +infinity.
+inline float float_down(double x) {
+    float f = float(x);
+    return double(f) > x ? std::nextafter(f, -INFINITY) : f;
+}
+inline float float_up(double x) {
+    float f = float(x);
+    return double(f) < x ? std::nextafter(f, INFINITY) : f;
+}
+
+/// Hits of a ray that is not prepared to visit every box lie within this
+/// distance: |o| <= 1e30, coordinates <= 1e30 and |d|max >= 1e-7.
+constexpr double kFloatTraversalRange = 1e38;
+
+/// A ray prepared for slab tests against float boxes.
 struct SlabRay {
-    double o[3];        ///< origin
-    double inv[3];      ///< 1 / d: +-inf for a +-0 component (IEEE division)
-    double inv_far[3];  ///< inv * kFarScale: for the far planes
-    int near[3];        ///< 0 when the min corner is entered first, 1 when the max corner is
-    double t_min;       ///< the ray's t_min
+    float o_near[3];         ///< origin for the near planes (see above)
+    float o_far[3];          ///< origin for the far planes
+    float inv_near[3];       ///< 1 / d for the near planes
+    float inv_far[3];        ///< 1 / d for the far planes
+    uint32_t near_plane[3];  ///< index of the near plane in FlatBvhNode::bounds[0][0..5]
+    uint32_t far_plane[3];   ///< index of the far plane
+    bool negative[3];        ///< whether the ray runs towards -infinity on each axis
+    float t_min;             ///< the ray's t_min, rounded down
 
-    explicit SlabRay(const Ray& ray) : t_min(ray.t_min) {
+    SlabRay(const Ray& ray, bool float_scene) : t_min(float_down(ray.t_min)) {
+        double o_max = std::max({std::fabs(ray.o.x), std::fabs(ray.o.y), std::fabs(ray.o.z)});
+        double d_max = std::max({std::fabs(ray.d.x), std::fabs(ray.d.y), std::fabs(ray.d.z)});
+        const bool visit_all = !float_scene || !(o_max <= 1e30) || !(d_max >= 1e-7);
         for (int a = 0; a < 3; ++a) {
-            o[a] = ray.o[a];
-            inv[a] = 1.0 / ray.d[a];
-            inv_far[a] = inv[a] * kFarScale;
-            // The sign bit of 1/d, not d < 0: a direction of -0.0 has
-            // 1/d = -inf and enters through the max corner like any negative one.
-            near[a] = std::signbit(inv[a]) ? 1 : 0;
+            double inv = 1.0 / ray.d[a];
+            negative[a] = std::signbit(inv);
+            near_plane[a] = uint32_t(negative[a] ? 3 + a : a);
+            far_plane[a] = uint32_t(negative[a] ? a : 3 + a);
+            inv_near[a] = inv_far[a] = float(inv);
+            if (std::isinf(inv_near[a]) && ray.d[a] != 0) {  // 1/d overflowed
+                inv_near[a] = std::copysign(FLT_MAX, inv_near[a]);
+            }
+            if (visit_all) {  // every near distance -inf, every far one +inf
+                o_near[a] = negative[a] ? -INFINITY : INFINITY;
+                o_far[a] = -o_near[a];
+            } else {
+                o_near[a] = negative[a] ? float_down(ray.o[a]) : float_up(ray.o[a]);
+                o_far[a] = negative[a] ? float_up(ray.o[a]) : float_down(ray.o[a]);
+            }
         }
     }
 };
 
-/// The largest t_max a box test uses for a ray interval ending at t_max:
-/// scaled like the far planes (so that a primitive hit exactly at t_max, a
-/// tie, is not culled by rounding) and finite (so that a ray parallel to a
-/// slab and outside it, entering at t = +inf, misses even when t_max = +inf).
-inline double box_t_max(double t_max) {
-    return std::min(t_max * kFarScale, DBL_MAX);
+/// The t_max of box tests for a ray interval ending at t_max: rounded up,
+/// and finite (so that a ray parallel to a slab and outside it, entering
+/// at t = +inf, misses even when t_max = +inf).
+inline float box_t_max(double t_max) {
+    return float_up(std::min(t_max, kFloatTraversalRange));
 }
 
 /// Whether the ray enters the node's box before t_max; the entry distance
-/// goes to t_enter. Where a distance is NaN (a zero direction component and
-/// an origin exactly on that plane: 0 * inf), the comparisons below are
-/// false and the plane is ignored, which is right: such a ray lies in the
-/// plane, on the closed box's boundary along that axis.
-inline bool slab_test(const FlatBvhNode& node, const SlabRay& r, double t_max, double& t_enter) {
-    double t_near = r.t_min, t_far = t_max;
+/// goes to t_enter.
+inline bool slab_test(const FlatBvhNode& node, const SlabRay& r, float t_max, float& t_enter) {
+    const float* planes = &node.bounds[0][0];
+    float t_near = r.t_min, t_far = t_max;
     for (int a = 0; a < 3; ++a) {
-        double t0 = (double(node.bounds[r.near[a]][a]) - r.o[a]) * r.inv[a];
-        double t1 = (double(node.bounds[1 - r.near[a]][a]) - r.o[a]) * r.inv_far[a];
+        float t0 = (planes[r.near_plane[a]] - r.o_near[a]) * r.inv_near[a];
+        float t1 = (planes[r.far_plane[a]] - r.o_far[a]) * r.inv_far[a];
         t_near = t0 > t_near ? t0 : t_near;
         t_far = t1 < t_far ? t1 : t_far;
     }
     t_enter = t_near;
-    return t_near <= t_far;
+    return t_near <= t_far * kFarScale;
 }
 
 // ---------------------------------------------------------------------------
@@ -211,22 +266,26 @@ template <class Tester>
 class ReferenceBvh final : public Accelerator, public InspectableBvh {
   public:
     ReferenceBvh(const Scene& scene, const IntersectStage& stage, FlatBvh bvh)
-        : bvh_(std::move(bvh)), tester_(scene, stage, bvh_.primitives) {}
+        : bvh_(std::move(bvh)), tester_(scene, stage, bvh_.primitives) {
+        // Coordinates beyond 1e30 could put hits beyond float range (SlabRay).
+        if (!bvh_.nodes.empty()) {
+            const FlatBvhNode& root = bvh_.nodes[0];
+            for (int a = 0; a < 3; ++a)
+                float_scene_ = float_scene_ && std::fabs(root.bounds[0][a]) <= 1e30f &&
+                               std::fabs(root.bounds[1][a]) <= 1e30f;
+        }
+    }
 
     std::optional<Hit> intersect(const Ray& ray) const override {
         Hit best;
         uint32_t best_slot = 0;
-        if (!traverse<false>(ray, best, best_slot)) return std::nullopt;
+        if (!closest_hit(ray, best, best_slot)) return std::nullopt;
         tester_.finish(best_slot, ray, best);
         best.primitive = bvh_.primitives[best_slot];
         return best;
     }
 
-    bool occluded(const Ray& ray) const override {
-        Hit hit;
-        uint32_t slot = 0;
-        return traverse<true>(ray, hit, slot);
-    }
+    bool occluded(const Ray& ray) const override { return any_hit(ray); }
 
     AcceleratorInfo info() const override {
         return {std::string("bvh-") + to_string(bvh_.split), bvh_.nodes.size(), bvh_.depth,
@@ -258,56 +317,42 @@ class ReferenceBvh final : public Accelerator, public InspectableBvh {
     }
 
   private:
-    /// The one traversal loop. Closest hit (kAnyHit false): fills `best`
-    /// and `best_slot` with the nearest hit (ties: larger primitive id) and
-    /// returns whether there is one. Any hit: returns at the first hit.
-    template <bool kAnyHit>
-    bool traverse(const Ray& ray, Hit& best, uint32_t& best_slot) const {
+    /// Closest hit: fills `best` and `best_slot` with the nearest hit (ties:
+    /// the larger primitive id) and returns whether there is one. At each
+    /// interior node both children's boxes are tested; the traversal goes on
+    /// into the one the ray enters first and keeps the other, with its entry
+    /// distance, on a stack. A kept node is skipped when the closest hit so
+    /// far lies before its entry.
+    bool closest_hit(const Ray& ray, Hit& best, uint32_t& best_slot) const {
         if (bvh_.nodes.empty()) return false;
         const FlatBvhNode* nodes = bvh_.nodes.data();
-        const SlabRay slab(ray);
+        const SlabRay slab(ray, float_scene_);
         const typename Tester::RayData query = tester_.prepare(ray);
         Ray r = ray;  // r.t_max shrinks to the closest hit so far
-        double t_box = box_t_max(r.t_max);
+        // Box tests stop at t_box; kept nodes entering after t_cull are
+        // skipped. Both are rounded up and t_cull is scaled like the far
+        // distances, so that a primitive hit exactly at the closest t (a
+        // tie) is never culled by rounding.
+        float t_box = box_t_max(r.t_max), t_cull = t_box * kFarScale;
         bool found = false;
         uint64_t visited = 1, tests = 0;
 
-        // Each entry: a node whose box the ray enters at t, still to visit.
         struct Entry {
-            uint32_t node;
-            double t;
+            uint32_t node;  ///< a node still to visit
+            float t;        ///< where the ray enters its box
         };
-        Entry stack[kMaxBvhDepth + 1];
+        Entry stack[kMaxBvhDepth + 1];  // at most one entry per level (flat_bvh.h)
         int size = 0;
 
-        double t_enter;
+        float t_enter;
         uint32_t node = 0;
         bool active = slab_test(nodes[0], slab, t_box, t_enter);
+        Hit hit;
         while (active) {
             const FlatBvhNode& n = nodes[node];
-            if (n.is_leaf()) {
-                for (uint32_t slot = n.offset, end = n.offset + n.count; slot < end; ++slot) {
-                    ++tests;
-                    Hit hit;
-                    if (!tester_.intersect(slot, r, query, hit)) continue;
-                    if (kAnyHit) {
-                        add_counts(visited, tests);
-                        return true;
-                    }
-                    // hit.t <= r.t_max = best.t here; at equal t the larger id wins.
-                    if (found && hit.t == best.t &&
-                        bvh_.primitives[slot] < bvh_.primitives[best_slot])
-                        continue;
-                    best = hit;
-                    best_slot = slot;
-                    found = true;
-                    r.t_max = hit.t;
-                    t_box = box_t_max(r.t_max);
-                }
-            } else {
-                // Test both children, go to the nearer, keep the farther.
+            if (!n.is_leaf()) {
                 uint32_t near_child = node + 1, far_child = n.offset;
-                double t_near_child, t_far_child;
+                float t_near_child, t_far_child;
                 bool hit_near = slab_test(nodes[near_child], slab, t_box, t_near_child);
                 bool hit_far = slab_test(nodes[far_child], slab, t_box, t_far_child);
                 visited += 2;
@@ -324,12 +369,27 @@ class ReferenceBvh final : public Accelerator, public InspectableBvh {
                     node = hit_near ? near_child : far_child;
                     continue;
                 }
+            } else {
+                for (uint32_t slot = n.offset, end = n.offset + n.count; slot < end; ++slot) {
+                    ++tests;
+                    if (!tester_.intersect(slot, r, query, hit)) continue;
+                    // hit.t <= r.t_max = best.t here; at equal t the larger id wins.
+                    if (found && hit.t == best.t &&
+                        bvh_.primitives[slot] < bvh_.primitives[best_slot])
+                        continue;
+                    best = hit;
+                    best_slot = slot;
+                    found = true;
+                    r.t_max = hit.t;
+                    t_box = box_t_max(r.t_max);
+                    t_cull = t_box * kFarScale;
+                }
             }
-            // Next: the nearest kept node that the closest hit has not passed.
+            // Next: the most recently kept node that the closest hit has not passed.
             active = false;
             while (size > 0) {
                 const Entry& e = stack[--size];
-                if (e.t <= t_box) {
+                if (e.t <= t_cull) {
                     node = e.node;
                     active = true;
                     break;
@@ -340,6 +400,46 @@ class ReferenceBvh final : public Accelerator, public InspectableBvh {
         return found;
     }
 
+    /// Any hit (shadow rays): order matters little, so each node's own box
+    /// is tested when it is reached, and the child on the ray's side of the
+    /// split axis goes first (pbrt-v3 section 4.4.2); stops at the first hit.
+    bool any_hit(const Ray& ray) const {
+        if (bvh_.nodes.empty()) return false;
+        const FlatBvhNode* nodes = bvh_.nodes.data();
+        const SlabRay slab(ray, float_scene_);
+        const typename Tester::RayData query = tester_.prepare(ray);
+        const float t_box = box_t_max(ray.t_max);
+        uint64_t visited = 0, tests = 0;
+        uint32_t stack[kMaxBvhDepth + 1];
+        int size = 0;
+        uint32_t node = 0;
+        Hit hit;
+        for (;;) {
+            const FlatBvhNode& n = nodes[node];
+            ++visited;
+            float t_enter;
+            if (slab_test(n, slab, t_box, t_enter)) {
+                if (!n.is_leaf()) {
+                    bool second_first = slab.negative[n.axis];
+                    stack[size++] = second_first ? node + 1 : n.offset;
+                    node = second_first ? n.offset : node + 1;
+                    continue;
+                }
+                for (uint32_t slot = n.offset, end = n.offset + n.count; slot < end; ++slot) {
+                    ++tests;
+                    if (tester_.intersect(slot, ray, query, hit)) {
+                        add_counts(visited, tests);
+                        return true;
+                    }
+                }
+            }
+            if (size == 0) break;
+            node = stack[--size];
+        }
+        add_counts(visited, tests);
+        return false;
+    }
+
     static void add_counts(uint64_t visited, uint64_t tests) {
         RayCounters& c = thread_counters();
         c.nodes_visited += visited;
@@ -347,7 +447,8 @@ class ReferenceBvh final : public Accelerator, public InspectableBvh {
     }
 
     FlatBvh bvh_;
-    Tester tester_;  ///< holds a reference to bvh_.primitives: declared after bvh_
+    Tester tester_;            ///< holds a reference to bvh_.primitives: declared after bvh_
+    bool float_scene_ = true;  ///< all coordinates within 1e30 (SlabRay)
 };
 
 }  // namespace

@@ -12,7 +12,9 @@
 //
 // Boxes are stored in single precision, rounded outward (each bound is the
 // nearest float on the far side of the double-precision bound), so a node's
-// box always contains its primitives exactly and 32 bytes hold a node.
+// box always contains its primitives exactly and 32 bytes hold a node. The
+// slab test runs in single precision too, with the double-precision ray
+// rounded so that it stays conservative (stages/bvh_traverse.cpp).
 //
 // Leaf cost model of the SAH (bvh.h): C_trav = 1 and C_isect = 1, the
 // measured ratio of a box test to a triangle test in this implementation

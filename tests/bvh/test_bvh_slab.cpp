@@ -119,3 +119,36 @@ TEST_CASE("student stubs: the linear-scan fallback gives the reference image") {
     Image student = render_with(StageSet::none().with(Stage::bvh));
     CHECK(reference.data() == student.data());
 }
+
+TEST_CASE("flat BVH: rays and scenes at the edges of float range") {
+    // Tiny direction components (1/d overflows float), origins far away
+    // (visited without culling), and a scene beyond 1e30 (likewise).
+    Scene knot = knot_scene(40, 6);
+    std::vector<Ray> rays = test_rays(knot, 3000, 5);
+    Rng rng(11);
+    for (Ray& r : rays) {
+        double u = rng.next_1d();
+        if (u < 0.25)
+            r.d.x = std::copysign(1e-40, r.d.x);
+        else if (u < 0.5)
+            r.d.y = 1e-300;
+        else if (u < 0.6)
+            r.o = r.o + 1e35 * r.d.unit() * -1.0;  // far behind, same line
+    }
+    Expected expected = linear_answers(knot, rays);
+    auto hits = [](const Expected& e) {
+        return std::count_if(e.hits.begin(), e.hits.end(), [](auto& h) { return h.has_value(); });
+    };
+    CHECK(hits(expected) > 500);
+    check_agrees(*make_reference_bvh(knot, kReference, AcceleratorSettings()), rays, expected);
+
+    Scene far = empty_scene();
+    Transform shift;
+    shift.translate = Vec3(1e31, -3e31, 0);
+    add_mesh(far, make_torus_knot(2, 3, 1e29, 2e28, 40, 6), shift);
+    far.finalize();
+    rays = test_rays(far, 3000, 6);
+    expected = linear_answers(far, rays);
+    CHECK(hits(expected) > 500);
+    check_agrees(*make_reference_bvh(far, kReference, AcceleratorSettings()), rays, expected);
+}
