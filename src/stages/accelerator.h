@@ -18,14 +18,14 @@ struct Scene;
 
 /// Figures an accelerator reports for tables and --stats.
 struct AcceleratorInfo {
-    std::string name;    ///< "linear", "bvh-sah", ...
-    uint64_t nodes = 0;  ///< BVH nodes; 0 for the linear scan
-    int depth = 0;       ///< deepest leaf; 0 for the linear scan
-    uint64_t bytes = 0;  ///< memory for nodes and primitive references
+    std::string name;        ///< "linear", "bvh-sah", ...
+    uint64_t nodes = 0;      ///< BVH nodes; 0 for the linear scan
+    int depth = 0;           ///< deepest leaf; 0 for the linear scan
+    uint64_t bytes = 0;      ///< memory for nodes and primitive references
 };
 
 class Accelerator {
-  public:
+public:
     virtual ~Accelerator() = default;
     /// The closest hit of `ray` within [t_min, t_max] over all primitives,
     /// with Hit::primitive set; nothing on a miss.
@@ -38,8 +38,8 @@ class Accelerator {
 
 /// One primitive (triangle or sphere) against a ray, through the intersect
 /// stage's functions; sets Hit::primitive.
-std::optional<Hit> intersect_primitive(const Scene& scene, const IntersectStage& stage,
-                                       uint32_t prim, const Ray& ray);
+std::optional<Hit> intersect_primitive(const Scene& scene, const IntersectStage& stage, uint32_t prim,
+                                       const Ray& ray);
 
 /// Tests every primitive: correct, simple, and O(n) per ray.
 std::unique_ptr<Accelerator> make_linear_scan(const Scene& scene, const IntersectStage& stage);

@@ -10,8 +10,7 @@ namespace pt::reference {
 
 Ray generate_ray(const Camera& camera, double x, double y, Vec2 lens_sample) {
     // The point on the sensor plane z = -1, in camera space.
-    Vec3 sensor((2.0 * x - 1.0) * camera.tan_half_hfov, (2.0 * y - 1.0) * camera.tan_half_vfov,
-                -1.0);
+    Vec3 sensor((2.0 * x - 1.0) * camera.tan_half_hfov, (2.0 * y - 1.0) * camera.tan_half_vfov, -1.0);
     if (camera.lens_radius <= 0) {
         Vec3 d = camera.to_world(sensor).unit();
         return Ray(camera.position, d, camera.near_clip, camera.far_clip);

@@ -48,8 +48,7 @@ std::optional<Hit> intersect_sphere(const Sphere& sphere, const Ray& ray) {
     // c = f.f - r^2 (Ray Tracing Gems ch. 7, equations 7.5 to 7.9).
     Vec3 f = ray.o - sphere.center;
     double a = dot(ray.d, ray.d);
-    double b =
-        -dot(f, ray.d);  // b' above: the parameter of the point closest to the centre, times a
+    double b = -dot(f, ray.d);  // b' above: the parameter of the point closest to the centre, times a
     double c = dot(f, f) - sphere.radius * sphere.radius;
     // Discriminant from the perpendicular distance: r^2 - |f + (b/a) d|^2,
     // times a. Avoids b^2 - ac, which cancels catastrophically for far spheres.

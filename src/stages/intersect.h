@@ -31,10 +31,8 @@ struct Hit {
                            ///< triangle has them, else the geometric normal (p1-p0) x (p2-p0)
                            ///< normalised; for spheres the outward normal. Never flipped
                            ///< towards the ray.
-    double b1 = 0,
-           b2 = 0;  ///< barycentric weights of p1 and p2 (p0's is 1 - b1 - b2); 0 for spheres
-    uint32_t primitive =
-        0;  ///< primitive id; set by the caller (the accelerator), not by the routines
+    double b1 = 0, b2 = 0;  ///< barycentric weights of p1 and p2 (p0's is 1 - b1 - b2); 0 for spheres
+    uint32_t primitive = 0;  ///< primitive id; set by the caller (the accelerator), not by the routines
 };
 
 using IntersectTriangleFn = std::optional<Hit> (*)(const Triangle& triangle, const Ray& ray);

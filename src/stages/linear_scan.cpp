@@ -6,8 +6,8 @@
 
 namespace pt {
 
-std::optional<Hit> intersect_primitive(const Scene& scene, const IntersectStage& stage,
-                                       uint32_t prim, const Ray& ray) {
+std::optional<Hit> intersect_primitive(const Scene& scene, const IntersectStage& stage, uint32_t prim,
+                                       const Ray& ray) {
     std::optional<Hit> hit = scene.is_sphere(prim)
                                  ? stage.intersect_sphere(scene.sphere_record(prim).sphere, ray)
                                  : stage.intersect_triangle(scene.triangle(prim), ray);
@@ -18,7 +18,7 @@ std::optional<Hit> intersect_primitive(const Scene& scene, const IntersectStage&
 namespace {
 
 class LinearScan final : public Accelerator {
-  public:
+public:
     LinearScan(const Scene& scene, const IntersectStage& stage) : scene_(scene), stage_(stage) {}
 
     std::optional<Hit> intersect(const Ray& ray) const override {
@@ -50,7 +50,7 @@ class LinearScan final : public Accelerator {
 
     AcceleratorInfo info() const override { return {"linear", 0, 0, 0}; }
 
-  private:
+private:
     const Scene& scene_;
     IntersectStage stage_;
 };

@@ -8,18 +8,12 @@ namespace pt {
 
 const char* to_string(Stage stage) {
     switch (stage) {
-        case Stage::camera:
-            return "camera";
-        case Stage::intersect:
-            return "intersect";
-        case Stage::bvh:
-            return "bvh";
-        case Stage::direct:
-            return "direct";
-        case Stage::global:
-            return "global";
-        case Stage::adaptive:
-            return "adaptive";
+        case Stage::camera: return "camera";
+        case Stage::intersect: return "intersect";
+        case Stage::bvh: return "bvh";
+        case Stage::direct: return "direct";
+        case Stage::global: return "global";
+        case Stage::adaptive: return "adaptive";
     }
     return "?";
 }
@@ -27,16 +21,11 @@ const char* to_string(Stage stage) {
 int part_of(Stage stage) {
     switch (stage) {
         case Stage::camera:
-        case Stage::intersect:
-            return 1;
-        case Stage::bvh:
-            return 2;
-        case Stage::direct:
-            return 3;
-        case Stage::global:
-            return 4;
-        case Stage::adaptive:
-            return 5;
+        case Stage::intersect: return 1;
+        case Stage::bvh: return 2;
+        case Stage::direct: return 3;
+        case Stage::global: return 4;
+        case Stage::adaptive: return 5;
     }
     return 0;
 }
@@ -63,21 +52,18 @@ StageSet StageSet::parse(const std::string& list, const std::string& flag) {
             }
         }
         if (!found)
-            throw InputError(
-                flag + ": unknown stage '" + name +
-                "' (expected a comma-separated list of camera, intersect, bvh, direct, "
-                "global, adaptive, or 'all' or 'none')");
+            throw InputError(flag + ": unknown stage '" + name +
+                             "' (expected a comma-separated list of camera, intersect, bvh, direct, "
+                             "global, adaptive, or 'all' or 'none')");
     }
-    if (set.empty())
-        throw InputError(flag + ": empty stage list (use 'none' for no student stages)");
+    if (set.empty()) throw InputError(flag + ": empty stage list (use 'none' for no student stages)");
     return set;
 }
 
 std::string StageSet::to_string() const {
     std::string out;
     for (int i = 0; i < kStageCount; ++i)
-        if (contains(Stage(i)))
-            out += (out.empty() ? "" : ",") + std::string(pt::to_string(Stage(i)));
+        if (contains(Stage(i))) out += (out.empty() ? "" : ",") + std::string(pt::to_string(Stage(i)));
     return out.empty() ? "none" : out;
 }
 

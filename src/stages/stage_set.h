@@ -17,7 +17,7 @@ const char* to_string(Stage stage);
 int part_of(Stage stage);
 
 class StageSet {
-  public:
+public:
     StageSet() = default;
     static StageSet none() { return {}; }
     static StageSet all() { return StageSet(0x3f); }
@@ -33,7 +33,7 @@ class StageSet {
     /// "camera,intersect", or "none".
     std::string to_string() const;
 
-  private:
+private:
     explicit StageSet(uint8_t bits) : bits_(bits) {}
     static uint8_t bit(Stage s) { return uint8_t(1u << unsigned(s)); }
     uint8_t bits_ = 0;

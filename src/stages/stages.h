@@ -21,9 +21,9 @@ struct Scene;
 
 /// How the accelerator is built (`--accel`, `--bvh-split`, `--max-leaf`).
 struct AcceleratorSettings {
-    bool use_bvh = true;        ///< false: linear scan (`--accel none`)
+    bool use_bvh = true;       ///< false: linear scan (`--accel none`)
     std::string split = "sah";  ///< sah | median | middle
-    int max_leaf = 4;           ///< at most this many primitives per leaf when a split is possible
+    int max_leaf = 4;          ///< at most this many primitives per leaf when a split is possible
 };
 
 using BuildAcceleratorFn = std::unique_ptr<Accelerator> (*)(const Scene& scene,

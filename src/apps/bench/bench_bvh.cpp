@@ -58,8 +58,8 @@ IntegratorKind parse_integrator(const std::string& name) {
           IntegratorKind::whitted, IntegratorKind::direct, IntegratorKind::path})
         if (name == to_string(k)) return k;
     throw InputError(
-        "bench bvh: --integrator: expected auto, normals, depth, whitted, direct or path, got '" +
-        name + "'");
+        "bvh: --integrator: expected auto, normals, depth, whitted, direct or path, got '" + name +
+        "'");
 }
 
 /// The scene without its spheres: what Embree and the kernel table compare on.
@@ -158,7 +158,20 @@ std::vector<KernelRow> time_kernels(const Scene& full_scene, int width, int heig
     return rows;
 }
 
-SceneResult measure_scene(const std::string& path, const Args& args, int width, int height) {
+/// The options of `bench bvh`, all checked before any work starts.
+struct BvhOptions {
+    int width = 480, height = 360;  ///< -r
+    int spp = 1;                    ///< -s
+    IntegratorKind integrator = IntegratorKind::automatic;
+    int threads = 1;            ///< -t: for the threads table
+    double budget = 60;         ///< --budget, seconds
+    double kernel_seconds = 1;  ///< --kernel-seconds
+    bool linear = true;         ///< not --no-linear
+    bool kernels = true;        ///< not --no-kernels
+};
+
+SceneResult measure_scene(const std::string& path, const BvhOptions& o) {
+    const int width = o.width, height = o.height;
     Scene scene = load_scene(path);
     scene.film_width = width;
     scene.film_height = height;
@@ -170,8 +183,8 @@ SceneResult measure_scene(const std::string& path, const Args& args, int width, 
     r.triangles = scene.triangles.size();
     r.spheres = scene.spheres.size();
     RenderSettings settings;
-    settings.spp = args.get_int("-s", 1, 1, 1 << 20);
-    settings.integrator = parse_integrator(args.get("--integrator", "auto"));
+    settings.spp = o.spp;
+    settings.integrator = o.integrator;
     Effects effects = analyze_effects(scene, settings);
     IntegratorKind kind = choose_integrator(scene, effects, settings, nullptr);
     std::unique_ptr<Integrator> integrator = make_integrator(kind);
@@ -187,11 +200,11 @@ SceneResult measure_scene(const std::string& path, const Args& args, int width, 
 
     RenderContext with{scene, *bvh, stages, settings, *integrator};
     r.with_bvh = time_render(with, 1, 0.5);
-    r.threads = args.get_int("-t", int(std::max(1u, std::thread::hardware_concurrency())), 1, 4096);
+    r.threads = o.threads;
     if (r.threads > 1) r.threaded = time_render(with, r.threads, 0.5);
 
-    if (!args.has("--no-linear")) {
-        double budget = args.get_double("--budget", 60, 0.001);
+    if (o.linear) {
+        const double budget = o.budget;
         std::cerr << "bench bvh: " << r.name << ": rendering without the BVH (budget "
                   << fixed(budget, 0) << " s)\n";
         AcceleratorSettings none;
@@ -201,10 +214,9 @@ SceneResult measure_scene(const std::string& path, const Args& args, int width, 
         r.without_bvh = time_render_sampled(without, budget, 1);
         r.has_linear = true;
     }
-    if (!args.has("--no-kernels")) {
+    if (o.kernels) {
         std::cerr << "bench bvh: " << r.name << ": timing the ray kernels\n";
-        r.kernels = time_kernels(scene, width, height, args.get_double("--kernel-seconds", 1, 0),
-                                 &r.embree_build_seconds);
+        r.kernels = time_kernels(scene, width, height, o.kernel_seconds, &r.embree_build_seconds);
     }
     return r;
 }
@@ -348,7 +360,7 @@ void write_json(const std::string& path, const std::vector<SceneResult>& results
         j["scenes"].push_back(s);
     }
     std::ofstream out(path);
-    if (!out) throw InputError("bench bvh: --json: cannot write " + path);
+    if (!out) throw InputError("bvh: --json: cannot write " + path);
     out << j.dump(2) << "\n";
 }
 
@@ -386,15 +398,22 @@ int run_bvh(const std::vector<std::string>& raw) {
         std::cout << kHelp;
         return kExitOk;
     }
-    int width = 480, height = 360;
+    BvhOptions o;
     if (a.has("-r")) {
-        width = parse_int("bench bvh: -r (width)", a.values("-r")[0], 1, 1 << 14);
-        height = parse_int("bench bvh: -r (height)", a.values("-r")[1], 1, 1 << 14);
+        o.width = parse_int("bvh: -r (width)", a.values("-r")[0], 1, 1 << 14);
+        o.height = parse_int("bvh: -r (height)", a.values("-r")[1], 1, 1 << 14);
     }
+    o.spp = a.get_int("-s", 1, 1, 1 << 20);
+    o.integrator = parse_integrator(a.get("--integrator", "auto"));
+    o.threads = a.get_int("-t", int(std::max(1u, std::thread::hardware_concurrency())), 1, 4096);
+    o.budget = a.get_double("--budget", 60, 0.001);
+    o.kernel_seconds = a.get_double("--kernel-seconds", 1, 0);
+    o.linear = !a.has("--no-linear");
+    o.kernels = !a.has("--no-kernels");
     std::vector<std::string> scenes = a.positionals();
     if (scenes.empty()) scenes = asset_scenes();
     if (scenes.empty() && !shared)
-        throw InputError("bench bvh: no scenes given and no assets/scenes found");
+        throw InputError("bvh: no scenes given and no assets/scenes found");
     if (shared) {
         std::vector<std::string> meshes = obj_files(shared_dir);
         if (meshes.empty())
@@ -402,13 +421,13 @@ int run_bvh(const std::vector<std::string>& raw) {
         scenes.insert(scenes.end(), meshes.begin(), meshes.end());
     }
     if (a.has("--json") && !std::ofstream(a.get("--json", ""), std::ios::app))
-        throw InputError("bench bvh: --json: cannot write " + a.get("--json", ""));
+        throw InputError("bvh: --json: cannot write " + a.get("--json", ""));
 
     std::vector<SceneResult> results;
     for (const std::string& path : scenes)
-        results.push_back(measure_scene(path, a, width, height));
-    print_tables(results, width, height, a.get_int("-s", 1, 1, 1 << 20));
-    if (a.has("--json")) write_json(a.get("--json", ""), results, width, height);
+        results.push_back(measure_scene(path, o));
+    print_tables(results, o.width, o.height, o.spp);
+    if (a.has("--json")) write_json(a.get("--json", ""), results, o.width, o.height);
     return kExitOk;
 }
 

@@ -30,12 +30,11 @@ Args::Args(const std::string& command, const std::vector<std::string>& args,
         if (a.size() > 1 && a[0] == '-') {
             auto it = arity.find(a);
             if (it == arity.end())
-                throw InputError("bench " + command + ": unknown option " + a + " (see bench " +
-                                 command + " --help)");
+                throw InputError(command + ": unknown option " + a + " (see bench " + command +
+                                 " --help)");
             if (i + size_t(it->second) >= args.size() && it->second > 0)
-                throw InputError("bench " + command + ": " + a + " expects " +
-                                 std::to_string(it->second) + " value" +
-                                 (it->second > 1 ? "s" : ""));
+                throw InputError(command + ": " + a + " expects " + std::to_string(it->second) +
+                                 " value" + (it->second > 1 ? "s" : ""));
             std::vector<std::string>& v = values_[a];
             v.assign(args.begin() + long(i) + 1, args.begin() + long(i) + 1 + it->second);
             i += size_t(it->second);
@@ -68,7 +67,7 @@ int parse_int(const std::string& what, const std::string& text, int lo, int hi) 
 
 int Args::get_int(const std::string& flag, int fallback, int lo, int hi) const {
     if (!has(flag)) return fallback;
-    return parse_int("bench " + command_ + ": " + flag, get(flag, ""), lo, hi);
+    return parse_int(command_ + ": " + flag, get(flag, ""), lo, hi);
 }
 
 double Args::get_double(const std::string& flag, double fallback, double lo) const {
@@ -77,8 +76,8 @@ double Args::get_double(const std::string& flag, double fallback, double lo) con
     char* end = nullptr;
     double v = std::strtod(text.c_str(), &end);
     if (text.empty() || *end != '\0' || !std::isfinite(v) || v < lo)
-        throw InputError("bench " + command_ + ": " + flag +
-                         ": expected a number >= " + fixed(lo, 3) + ", got '" + text + "'");
+        throw InputError(command_ + ": " + flag + ": expected a number >= " + fixed(lo, 3) +
+                         ", got '" + text + "'");
     return v;
 }
 
