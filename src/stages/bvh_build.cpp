@@ -34,12 +34,8 @@ const char* to_string(BvhSplit split) {
 
 void round_box_outward(const BBox& box, float lo[3], float hi[3]) {
     for (int a = 0; a < 3; ++a) {
-        // float(x) rounds to nearest; one step outward when that went inward.
-        float l = float(box.min[a]), h = float(box.max[a]);
-        if (double(l) > box.min[a]) l = std::nextafter(l, -INFINITY);
-        if (double(h) < box.max[a]) h = std::nextafter(h, INFINITY);
-        lo[a] = l;
-        hi[a] = h;
+        lo[a] = float_down(box.min[a]);
+        hi[a] = float_up(box.max[a]);
     }
 }
 

@@ -66,15 +66,6 @@ constexpr float gamma_f(int n) {
 const float kFarScale = 1.0f + 2.0f * gamma_f(5);
 
 /// The float nearest to x on the side of -infinity / +infinity.
-inline float float_down(double x) {
-    float f = float(x);
-    return double(f) > x ? std::nextafter(f, -INFINITY) : f;
-}
-inline float float_up(double x) {
-    float f = float(x);
-    return double(f) < x ? std::nextafter(f, INFINITY) : f;
-}
-
 /// Hits of a ray that is not prepared to visit every box lie within this
 /// distance: |o| <= 1e30, coordinates <= 1e30 and |d|max >= 1e-7.
 constexpr double kFloatTraversalRange = 1e38;

@@ -28,7 +28,9 @@
 // the traversal stack never overflows.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -88,5 +90,35 @@ FlatBvh build_flat_bvh(const Scene& scene, const AcceleratorSettings& settings);
 
 /// The float box that contains `box`: each bound rounded outward.
 void round_box_outward(const BBox& box, float lo[3], float hi[3]);
+
+/// The next float towards +infinity / -infinity, by stepping the bit
+/// pattern (pbrt-v3 section 3.9.1), inline: std::nextafter is a library call.
+inline float next_float_up(float f) {
+    if (f == INFINITY) return f;
+    if (f == 0.0f) f = 0.0f;  // -0 steps up like +0
+    uint32_t bits;
+    std::memcpy(&bits, &f, sizeof f);
+    bits = f >= 0 ? bits + 1 : bits - 1;
+    std::memcpy(&f, &bits, sizeof f);
+    return f;
+}
+inline float next_float_down(float f) {
+    if (f == -INFINITY) return f;
+    if (f == 0.0f) f = -0.0f;  // +0 steps down like -0
+    uint32_t bits;
+    std::memcpy(&bits, &f, sizeof f);
+    bits = f > 0 ? bits - 1 : bits + 1;
+    std::memcpy(&f, &bits, sizeof f);
+    return f;
+}
+/// x rounded to float towards -infinity / +infinity.
+inline float float_down(double x) {
+    float f = float(x);
+    return double(f) > x ? next_float_down(f) : f;
+}
+inline float float_up(double x) {
+    float f = float(x);
+    return double(f) < x ? next_float_up(f) : f;
+}
 
 }  // namespace pt

@@ -152,3 +152,20 @@ TEST_CASE("flat BVH: rays and scenes at the edges of float range") {
     CHECK(hits(expected) > 500);
     check_agrees(*make_reference_bvh(far, kReference, AcceleratorSettings()), rays, expected);
 }
+
+TEST_CASE("float_down and float_up round to the neighbouring floats") {
+    Rng rng(3);
+    int bad = 0;
+    const double specials[] = {0.0,    -0.0,    1e-45, -1e-45, 1e-300, -1e-300,
+                               3.5e38, -3.5e38, 1e39,  -1e39,  0.1,    1.0};
+    for (int i = 0; i < 100000; ++i) {
+        double x = i < 12 ? specials[i]
+                          : std::ldexp(2 * rng.next_1d() - 1, int(rng.next_index(300)) - 150);
+        float f = float(x);
+        float down = double(f) > x ? std::nextafter(f, -INFINITY) : f;
+        float up = double(f) < x ? std::nextafter(f, INFINITY) : f;
+        bad += !(float_down(x) == down && float_up(x) == up && double(float_down(x)) <= x &&
+                 double(float_up(x)) >= x);
+    }
+    CHECK(bad == 0);
+}
