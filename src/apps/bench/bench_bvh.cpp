@@ -224,10 +224,10 @@ SceneResult measure_scene(const std::string& path, const BvhOptions& o) {
 std::string linear_cell(const SceneResult& r) {
     if (!r.has_linear) return "-";
     const RenderTiming& t = r.without_bvh;
-    // Enough digits for three significant ones in the interval's half-width.
-    auto digits = [](double v) { return v >= 100 ? 0 : v >= 10 ? 1 : v >= 1 ? 2 : 3; };
+    // Seconds to three or four significant digits.
+    auto digits = [](double v) { return v >= 100 ? 1 : v >= 10 ? 2 : 3; };
     if (!t.estimated) return fixed(t.seconds, digits(t.seconds));
-    int d = std::max(digits(t.seconds), std::min(3, digits(t.half_width) + 1));
+    int d = digits(t.seconds);
     return "est. " + fixed(t.seconds, d) + " ± " + fixed(t.half_width, d);
 }
 
@@ -236,9 +236,10 @@ void print_tables(const std::vector<SceneResult>& results, int width, int height
     int threads = results.empty() ? 1 : results[0].threads;
     std::cout << "\n### BVH against the linear scan (" << width << "x" << height << ", " << spp
               << " spp, 1 thread)\n\n";
-    Table main({"scene", "integrator", "triangles", "spheres", "build ms", "nodes", "depth",
-                "bytes/prim", "no BVH s", "BVH s", "speedup", "Mrays/s", "nodes/ray", "tests/ray"},
-               2);
+    Table main(
+        {"scene", "integrator", "triangles", "spheres", "build ms", "nodes", "depth", "tree B/prim",
+         "all B/prim", "no BVH s", "BVH s", "speedup", "Mrays/s", "nodes/ray", "tests/ray"},
+        2);
     for (const SceneResult& r : results) {
         const RayCounters& c = r.with_bvh.counters;
         uint64_t prims = std::max<uint64_t>(1, r.triangles + r.spheres);
@@ -249,10 +250,11 @@ void print_tables(const std::vector<SceneResult>& results, int width, int height
         }
         main.add({r.name, r.integrator, count(r.triangles), count(r.spheres),
                   fixed(r.build_seconds * 1e3, 1), count(r.info.nodes),
-                  std::to_string(r.info.depth), fixed(double(r.info.bytes) / prims, 1),
-                  linear_cell(r), fixed(r.with_bvh.seconds, 4), speedup,
-                  fixed(mrays(c, r.with_bvh.seconds), 2), fixed(per_ray(c.nodes_visited, c), 1),
-                  fixed(per_ray(c.primitive_tests, c), 2)});
+                  std::to_string(r.info.depth),
+                  fixed(double(r.info.nodes * 32 + prims * 4) / prims, 1),
+                  fixed(double(r.info.bytes) / prims, 1), linear_cell(r),
+                  fixed(r.with_bvh.seconds, 4), speedup, fixed(mrays(c, r.with_bvh.seconds), 2),
+                  fixed(per_ray(c.nodes_visited, c), 1), fixed(per_ray(c.primitive_tests, c), 2)});
     }
     std::cout << main.markdown();
     if (threads > 1) {
