@@ -106,8 +106,8 @@ class Builder {
             centroids.expand(c, c);
         }
         for (int a = 0; a < 3; ++a) {
-            out_.nodes[index].bounds[0][a] = box.lo[a];
-            out_.nodes[index].bounds[1][a] = box.hi[a];
+            out_.nodes[index].bounds[a] = box.lo[a];
+            out_.nodes[index].bounds[3 + a] = box.hi[a];
         }
 
         SplitChoice choice = choose_split(begin, end, depth, box, centroids);

@@ -65,7 +65,6 @@ constexpr float gamma_f(int n) {
 }
 const float kFarScale = 1.0f + 2.0f * gamma_f(5);
 
-/// The float nearest to x on the side of -infinity / +infinity.
 /// Hits of a ray that is not prepared to visit every box lie within this
 /// distance: |o| <= 1e30, coordinates <= 1e30 and |d|max >= 1e-7.
 constexpr double kFloatTraversalRange = 1e38;
@@ -76,7 +75,7 @@ struct SlabRay {
     float o_far[3];          ///< origin for the far planes
     float inv_near[3];       ///< 1 / d for the near planes
     float inv_far[3];        ///< 1 / d for the far planes
-    uint32_t near_plane[3];  ///< index of the near plane in FlatBvhNode::bounds[0][0..5]
+    uint32_t near_plane[3];  ///< index of the near plane in FlatBvhNode::bounds
     uint32_t far_plane[3];   ///< index of the far plane
     bool negative[3];        ///< whether the ray runs towards -infinity on each axis
     float t_min;             ///< the ray's t_min, rounded down
@@ -115,11 +114,10 @@ inline float box_t_max(double t_max) {
 /// Whether the ray enters the node's box before t_max; the entry distance
 /// goes to t_enter.
 inline bool slab_test(const FlatBvhNode& node, const SlabRay& r, float t_max, float& t_enter) {
-    const float* planes = &node.bounds[0][0];
     float t_near = r.t_min, t_far = t_max;
     for (int a = 0; a < 3; ++a) {
-        float t0 = (planes[r.near_plane[a]] - r.o_near[a]) * r.inv_near[a];
-        float t1 = (planes[r.far_plane[a]] - r.o_far[a]) * r.inv_far[a];
+        float t0 = (node.bounds[r.near_plane[a]] - r.o_near[a]) * r.inv_near[a];
+        float t1 = (node.bounds[r.far_plane[a]] - r.o_far[a]) * r.inv_far[a];
         t_near = t0 > t_near ? t0 : t_near;
         t_far = t1 < t_far ? t1 : t_far;
     }
@@ -262,8 +260,8 @@ class ReferenceBvh final : public Accelerator, public InspectableBvh {
         if (!bvh_.nodes.empty()) {
             const FlatBvhNode& root = bvh_.nodes[0];
             for (int a = 0; a < 3; ++a)
-                float_scene_ = float_scene_ && std::fabs(root.bounds[0][a]) <= 1e30f &&
-                               std::fabs(root.bounds[1][a]) <= 1e30f;
+                float_scene_ = float_scene_ && std::fabs(root.bounds[a]) <= 1e30f &&
+                               std::fabs(root.bounds[3 + a]) <= 1e30f;
         }
     }
 

@@ -56,18 +56,18 @@ const char* to_string(BvhSplit split);
 
 /// One node: 32 bytes, aligned so that a node never straddles a cache line.
 struct alignas(32) FlatBvhNode {
-    float bounds[2][3] =
-        {};  ///< box: [0] the minimum corner rounded down, [1] the maximum rounded up
-    uint32_t offset =
-        0;  ///< leaf: first index in FlatBvh::primitives; interior: second child's index
+    /// The box: min x, y, z rounded down to float, then max x, y, z rounded up.
+    float bounds[6] = {};
+    /// Leaf: the first index in FlatBvh::primitives. Interior: the index of
+    /// the second child (the first child follows the node).
+    uint32_t offset = 0;
     uint16_t count = 0;  ///< leaf: number of primitives (>= 1); interior: 0
     uint8_t axis = 0;    ///< interior: the split axis (0, 1, 2); leaf: 0
     uint8_t pad = 0;     ///< unused
 
     bool is_leaf() const { return count > 0; }
     BBox box() const {
-        return BBox(Vec3(bounds[0][0], bounds[0][1], bounds[0][2]),
-                    Vec3(bounds[1][0], bounds[1][1], bounds[1][2]));
+        return BBox(Vec3(bounds[0], bounds[1], bounds[2]), Vec3(bounds[3], bounds[4], bounds[5]));
     }
 };
 static_assert(sizeof(FlatBvhNode) == 32, "a BVH node must be 32 bytes");

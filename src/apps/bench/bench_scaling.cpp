@@ -180,7 +180,7 @@ int run_scaling(const std::vector<std::string>& args) {
         header.push_back("Embree diffuse ns/ray");
     }
     Table t(header, 0);
-    std::vector<double> log_n, log_build, ns_primary, ns_diffuse, ns_shadow, log_n_build;
+    std::vector<double> log_n, log_build, ns_primary, ns_diffuse, ns_shadow, log_n_build, nodes;
     for (const SizeResult& r : results) {
         double n = double(r.triangles);
         std::vector<std::string> row = {count(r.triangles),
@@ -204,6 +204,7 @@ int run_scaling(const std::vector<std::string>& args) {
         ns_primary.push_back(r.ns[0]);
         ns_diffuse.push_back(r.ns[1]);
         ns_shadow.push_back(r.ns[2]);
+        nodes.push_back(r.nodes);
         // Builds below 10 ms are mostly fixed costs: leave them out of the fit.
         if (r.build_seconds >= 0.01) {
             log_n_build.push_back(std::log(n));
@@ -221,6 +222,11 @@ int run_scaling(const std::vector<std::string>& args) {
                       << fixed(f.b, 1) << " log2 n (R^2 = " << fixed(f.r2, 3)
                       << "): " << fixed(f.b, 1) << " ns more per doubling of n\n";
         }
+        // The hardware-independent count: what O(log n) is about. Time per
+        // ray also pays for caches, which a larger tree fits less well.
+        LineFit fn = fit_line(log_n, nodes);
+        std::cout << "- nodes visited per diffuse ray = " << fixed(fn.a, 1) << " + "
+                  << fixed(fn.b, 2) << " log2 n (R^2 = " << fixed(fn.r2, 3) << ")\n";
         if (log_build.size() >= 2) {
             LineFit f = fit_line(log_n_build, log_build);
             // The exponent that exact n log n growth would show over the same sizes.
