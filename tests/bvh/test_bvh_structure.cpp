@@ -185,3 +185,46 @@ TEST_CASE("BVH: --max-leaf and --bvh-split are checked") {
     settings.max_leaf = 0;
     CHECK_THROWS_AS(build_flat_bvh(scene, settings), InputError);
 }
+
+TEST_CASE("CS184-style reference construct_bvh: leaves partition the list, boxes nest") {
+    auto check_tree = [](const Scene& scene, size_t max_leaf) {
+        std::vector<BVHPrimitive> prims(scene.primitive_count());
+        for (uint32_t i = 0; i < prims.size(); ++i) {
+            prims[i].id = i;
+            prims[i].bb = padded_primitive_bounds(scene, i);
+            prims[i].centroid = prims[i].bb.centroid();
+        }
+        std::unique_ptr<BVHNode> root = reference::construct_bvh(prims, 0, prims.size(), max_leaf);
+        REQUIRE(root);
+        std::vector<int> covered(prims.size(), 0);
+        int bad = 0;
+        std::vector<const BVHNode*> stack{root.get()};
+        while (!stack.empty()) {
+            const BVHNode* n = stack.back();
+            stack.pop_back();
+            if (n->is_leaf()) {
+                bad += n->end - n->start > max_leaf;
+                for (size_t i = n->start; i < n->end; ++i) {
+                    ++covered[i];
+                    bad += !n->bb.contains(prims[i].bb);
+                }
+                continue;
+            }
+            REQUIRE(n->l);
+            REQUIRE(n->r);
+            bad += !n->bb.contains(n->l->bb) || !n->bb.contains(n->r->bb);
+            bad += n->l->start != n->start || n->r->end != n->end || n->l->end != n->r->start;
+            stack.push_back(n->l.get());
+            stack.push_back(n->r.get());
+        }
+        CHECK(bad == 0);
+        CHECK(std::count(covered.begin(), covered.end(), 1) == long(prims.size()));
+    };
+    check_tree(knot_scene(), 4);
+    check_tree(knot_scene(), 1);
+    Scene copies = empty_scene();
+    for (int i = 0; i < 100; ++i)
+        add_triangle(copies, Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0));
+    copies.finalize();
+    check_tree(copies, 4);
+}

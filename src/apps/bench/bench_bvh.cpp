@@ -5,6 +5,7 @@
 // ray kernels alone (primary, diffuse bounce, shadow rays) against Embree 3
 // when the bench is built with it.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -227,8 +228,10 @@ std::string linear_cell(const SceneResult& r) {
     // Seconds to three or four significant digits.
     auto digits = [](double v) { return v >= 100 ? 1 : v >= 10 ? 2 : 3; };
     if (!t.estimated) return fixed(t.seconds, digits(t.seconds));
+    // The half-width to two significant digits (at most 3 decimals).
     int d = digits(t.seconds);
-    return "est. " + fixed(t.seconds, d) + " ± " + fixed(t.half_width, d);
+    int hw = t.half_width > 0 ? std::clamp(1 - int(std::floor(std::log10(t.half_width))), 0, 3) : d;
+    return "est. " + fixed(t.seconds, d) + " ± " + fixed(t.half_width, hw);
 }
 
 void print_tables(const std::vector<SceneResult>& results, int width, int height, int spp) {

@@ -36,7 +36,7 @@ const char* const kHelp = R"(bench scaling: build time and time per ray against 
 
 The mesh is a (2,3) torus knot of 2 x segments x sides triangles, with
 segments = 8 sides, so its shape stays the same and only the tessellation
-grows. One thread throughout. 4M triangles need about 1.5 GB of memory.
+grows. One thread throughout. 4M triangles need about 0.7 GB of memory.
 )";
 
 /// "10k" -> 10000, "1M" -> 1000000, "2500" -> 2500.
