@@ -37,9 +37,13 @@ int main(int argc, char** argv) {
     using namespace pt;
     using namespace pt::bench;
     std::vector<std::string> args(argv + 1, argv + argc);
-    if (args.empty() || args[0] == "-h" || args[0] == "--help") {
-        print_usage(args.empty() ? std::cerr : std::cout);
-        return args.empty() ? kExitBadInput : kExitOk;
+    if (args.empty()) {
+        std::cerr << "bench: error: no subcommand given (see bench --help)\n";
+        return kExitBadInput;
+    }
+    if (args[0] == "-h" || args[0] == "--help") {
+        print_usage(std::cout);
+        return kExitOk;
     }
     const BenchCommand* command = nullptr;
     for (const BenchCommand& c : bench_commands())
