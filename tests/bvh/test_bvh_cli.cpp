@@ -4,6 +4,7 @@
 #include <doctest/doctest.h>
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <fstream>
@@ -18,7 +19,9 @@ struct Run {
 };
 
 Run run(const std::string& command) {
-    const std::string log = std::string(PT_TEST_OUTPUT_DIR) + "/bvh_cli.log";
+    // ctest runs test cases in parallel processes: one log per process.
+    const std::string log =
+        std::string(PT_TEST_OUTPUT_DIR) + "/bvh_cli_" + std::to_string(getpid()) + ".log";
     int status = std::system((command + " > " + log + " 2>&1").c_str());
     std::ifstream in(log);
     std::stringstream text;
@@ -50,28 +53,28 @@ int count_lines(const std::string& text) {
 }  // namespace
 
 TEST_CASE("pathtracer --bvh-view and --bvh-depth-image write their images") {
-    std::remove(out("view.png").c_str());
-    std::remove(out("depth.png").c_str());
-    Run r = run(bin("pathtracer") + " -q -t 2 -r 48 36 --bvh-view RL -f " + out("view.png") +
-                " --bvh-depth-image " + out("depth.png") + " " + scene("cbox_knot.json"));
+    std::remove(out("bvh_view.png").c_str());
+    std::remove(out("bvh_depth.png").c_str());
+    Run r = run(bin("pathtracer") + " -q -t 2 -r 48 36 --bvh-view RL -f " + out("bvh_view.png") +
+                " --bvh-depth-image " + out("bvh_depth.png") + " " + scene("cbox_knot.json"));
     INFO(r.output);
     CHECK(r.code == 0);
-    CHECK(exists(out("view.png")));
-    CHECK(exists(out("depth.png")));
+    CHECK(exists(out("bvh_view.png")));
+    CHECK(exists(out("bvh_depth.png")));
     CHECK(r.output.find("bvh view: node 'RL'") != std::string::npos);
     CHECK(r.output.find("nodes visited per camera ray") != std::string::npos);
 }
 
 TEST_CASE("pathtracer --bvh-view: bad paths are one-line errors with exit code 2") {
     for (const char* path : {"RX", "LLLLLLLLLLLLLLLLLLLLLLLLLLLLLLLLLLLLLLLLLL"}) {
-        Run r = run(bin("pathtracer") + " -q -r 8 6 --bvh-view " + path + " -f " + out("bad.png") +
-                    " " + scene("cbox.json"));
+        Run r = run(bin("pathtracer") + " -q -r 8 6 --bvh-view " + path + " -f " +
+                    out("bvh_bad.png") + " " + scene("cbox.json"));
         INFO(r.output);
         CHECK(r.code == 2);
         CHECK(r.output.find("error: --bvh-view") != std::string::npos);
     }
-    Run r = run(bin("pathtracer") + " -q -r 8 6 --accel none --bvh-view R -f " + out("bad.png") +
-                " " + scene("cbox.json"));
+    Run r = run(bin("pathtracer") + " -q -r 8 6 --accel none --bvh-view R -f " +
+                out("bvh_bad.png") + " " + scene("cbox.json"));
     CHECK(r.code == 2);
     r = run(bin("pathtracer") + " -q -r 8 6 --bvh-depth-image x.jpg " + scene("cbox.json"));
     CHECK(r.code == 2);
@@ -79,12 +82,13 @@ TEST_CASE("pathtracer --bvh-view: bad paths are one-line errors with exit code 2
 
 TEST_CASE("bench bvh prints its table; bad options exit with code 2") {
     Run r = run(bin("bench") + " bvh --budget 0.05 --kernel-seconds 0 -r 16 12 -t 1 --json " +
-                out("bench.json") + " " + scene("cbox.json") + " --shared " + out("no_such_dir"));
+                out("bvh_bench.json") + " " + scene("cbox.json") + " --shared " +
+                out("bvh_no_such_dir"));
     INFO(r.output);
     CHECK(r.code == 0);
     CHECK(r.output.find("| cbox") != std::string::npos);
     CHECK(r.output.find("no shared meshes in") != std::string::npos);
-    CHECK(exists(out("bench.json")));
+    CHECK(exists(out("bvh_bench.json")));
     for (const char* bad :
          {"bvh --bogus", "bvh -r 0 10", "bvh --budget x", "nonsense", "scaling --sizes 3"}) {
         Run b = run(bin("bench") + " " + bad);
