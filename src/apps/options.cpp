@@ -134,6 +134,11 @@ std::vector<FlagSpec> flag_table() {
                  if (c != 'L' && c != 'R') throw InputError(f + ": expected a path of L and R steps, got '" + v[0] + "'");
              o.bvh_view = v[0];
          }},
+        {{"--bvh-depth-image"}, 1, [](Options& o, S f, V v) {
+             if (v[0].size() < 4 || v[0].substr(v[0].size() - 4) != ".png")
+                 throw InputError(f + ": expected a file name ending in .png, got '" + v[0] + "'");
+             o.bvh_depth_image = v[0];
+         }},
         {{"-h", "--help"}, 0, [](Options& o, S, V) { o.help = true; }},
     };
 }
@@ -203,6 +208,7 @@ std::string usage(const std::string& program, StageSet default_student) {
       << "  --triangle moller|watertight                                           [moller]\n"
       << "  --bvh-split sah|median|middle, --max-leaf N                            [sah, 4]\n"
       << "  --bvh-view PATH highlight the BVH node at PATH (L/R steps from the root)\n"
+      << "  --bvh-depth-image FILE.png  also write a heat map of BVH nodes visited per pixel\n"
       << "\nexit codes: 0 ok, 1 failure, 2 bad input, 3 a student stage is not implemented yet\n";
     return s.str();
 }

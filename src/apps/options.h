@@ -31,6 +31,7 @@ struct Options {
     bool quiet = false;                ///< -q
     std::string triangle_test = "moller";  ///< --triangle moller|watertight
     std::optional<std::string> bvh_view;   ///< --bvh-view PATH
+    std::string bvh_depth_image;           ///< --bvh-depth-image FILE.png
     bool help = false;                 ///< -h / --help
 };
 

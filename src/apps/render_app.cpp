@@ -14,6 +14,7 @@
 #include "core/progress.h"
 #include "core/timer.h"
 #include "image/image_io.h"
+#include "render/bvh_view.h"
 #include "render/integrator.h"
 #include "render/render_context.h"
 #include "render/renderer.h"
@@ -133,6 +134,34 @@ void write_stats(const std::string& path, const std::string& program, const Opti
     out << j.dump(2) << "\n";
 }
 
+/// Traces the camera rays once more, one per pixel centre, counting the BVH
+/// nodes each visits, and writes the heat map (render/bvh_view.h).
+void write_bvh_depth_image(const RenderContext& context, const RenderOptions& render_options,
+                           const Options& options, const std::string& program) {
+    RenderSettings one_ray = context.settings;
+    one_ray.spp = 1;
+    one_ray.adaptive = false;
+    std::unique_ptr<Integrator> cost = make_bvh_cost_integrator();
+    RenderContext counting{context.scene, context.accelerator, context.stages, one_ray, *cost};
+    RenderOptions quiet = render_options;
+    quiet.show_progress = false;
+    Image counts = render_image(counting, quiet).image;
+    double max = 0, sum = 0;
+    for (int y = 0; y < counts.height(); ++y)
+        for (int x = 0; x < counts.width(); ++x) {
+            max = std::max(max, counts.at(x, y).r);
+            sum += counts.at(x, y).r;
+        }
+    write_png(bvh_cost_heat_map(counts, max), options.bvh_depth_image);
+    char line[160];
+    std::snprintf(line, sizeof line, "nodes visited per camera ray: mean %.1f, max %.0f (white)",
+                  sum / double(counts.pixel_count()), max);
+    std::cout << program << ": wrote " << options.bvh_depth_image << ": " << line << "\n";
+    if (max == 0)
+        std::cout << program << ": note: only the reference BVH counts the nodes it visits (accelerator '"
+                  << context.accelerator.info().name << "')\n";
+}
+
 int run(const std::vector<std::string>& args, const std::string& program, StageSet default_student) {
     Options options = parse_options(args, default_student);
     if (options.help) {
@@ -147,9 +176,11 @@ int run(const std::vector<std::string>& args, const std::string& program, StageS
     check_writable(options.output, "-f");
     check_writable(options.hdr_output, "--hdr");
     check_writable(options.stats_output, "--stats");
+    check_writable(options.bvh_depth_image, "--bvh-depth-image");
     seconds.load = timer.seconds();
 
-    Stages stages = make_stages(options.student);
+    Stages stages = make_stages(options.student, options.triangle_test == "watertight" ? TriangleTest::watertight
+                                                                                      : TriangleTest::moller);
     Effects effects = analyze_effects(scene, options.render);
     std::string reason;
     IntegratorKind kind = choose_integrator(scene, effects, options.render, &reason, options.student);
@@ -161,14 +192,23 @@ int run(const std::vector<std::string>& args, const std::string& program, StageS
               << scene.spheres.size() << " spheres, " << scene.emitters.size() << " emitters\n"
               << program << ": student stages: " << options.student.to_string() << "\n"
               << program << ": effects: " << effects.to_string() << "\n"
-              << program << ": integrator: " << to_string(kind) << " (" << reason << ")\n"
+              << program << ": integrator: "
+              << (options.bvh_view ? std::string("bvh view (--bvh-view)")
+                                   : std::string(to_string(kind)) + " (" + reason + ")") << "\n"
               << program << ": skipped: " << skipped_code_paths(code_paths) << "\n";
-    std::string note = integrator_note(kind, scene, options.render);
+    std::string note = options.bvh_view ? "" : integrator_note(kind, scene, options.render);
     if (!note.empty()) std::cout << program << ": note: " << note << "\n";
 
     timer.reset();
     std::unique_ptr<Accelerator> accelerator = build_accelerator(scene, stages, options.accelerator);
     seconds.build = timer.seconds();
+    if (options.bvh_view) {
+        // The BVH view replaces the integrator (render/bvh_view.h).
+        BvhNodeView node = select_bvh_node(*accelerator, *options.bvh_view);
+        integrator = make_bvh_view_integrator(scene, node, scene.film_height);
+        std::cout << program << ": bvh view: node '" << *options.bvh_view << "' (" << (node.leaf ? "leaf, " : "")
+                  << node.primitives.size() << " of " << scene.primitive_count() << " primitives)\n";
+    }
 
     RenderContext context{scene, *accelerator, stages, options.render, *integrator};
     RenderOptions render_options;
@@ -206,6 +246,7 @@ int run(const std::vector<std::string>& args, const std::string& program, StageS
     if (c.clamped_samples > 0)
         std::cout << program << ": note: --clamp scaled down " << c.clamped_samples
                   << " samples (biased: the image is darker than the true mean)\n";
+    if (!options.bvh_depth_image.empty()) write_bvh_depth_image(context, render_options, options, program);
     return kExitOk;
 }
 

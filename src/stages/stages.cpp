@@ -1,19 +1,21 @@
 #include "stages/stages.h"
 
 #include "scene/scene.h"
+#include "stages/bvh.h"
 
 namespace pt {
 namespace {
 
-// Until Part 2's BVH lands, both sides of the bvh stage are the linear scan.
-std::unique_ptr<Accelerator> build_linear(const Scene& scene, const IntersectStage& intersect,
-                                          const AcceleratorSettings&) {
-    return make_linear_scan(scene, intersect);
+// The student's side of the bvh stage: the CS184-style tree of
+// assignments/part2/bvh.cpp.
+std::unique_ptr<Accelerator> build_student_bvh(const Scene& scene, const IntersectStage& intersect,
+                                               const AcceleratorSettings& settings) {
+    return make_tree_bvh(scene, intersect, settings, student::tree_functions());
 }
 
 }  // namespace
 
-Stages make_stages(StageSet student) {
+Stages make_stages(StageSet student, TriangleTest triangle_test) {
     Stages s;
     s.student = student;
     if (student.contains(Stage::camera)) {
@@ -24,9 +26,11 @@ Stages make_stages(StageSet student) {
     if (student.contains(Stage::intersect)) {
         s.intersect = {student::intersect_triangle, student::intersect_sphere};
     } else {
-        s.intersect = {reference::intersect_triangle, reference::intersect_sphere};
+        s.intersect = {triangle_test == TriangleTest::watertight ? reference::intersect_triangle_watertight
+                                                                 : reference::intersect_triangle,
+                       reference::intersect_sphere};
     }
-    s.bvh = {build_linear};
+    s.bvh = {student.contains(Stage::bvh) ? build_student_bvh : make_reference_bvh};
     s.adaptive = {student.contains(Stage::adaptive) ? student::has_converged : reference::has_converged};
     if (student.contains(Stage::direct)) {
         s.direct = {student::diffuse_f,
