@@ -1,34 +1,46 @@
-// effects_bench: what "simulate only what the scene calls for" saves, for
-// docs/global.md. Not a test (tests/global/test_effects.cpp proves the
-// images do not change; this measures the time).
-//
-//   effects_bench [--threads T] [--repeat R]
+// bench effects: what "simulate only what the scene calls for" saves
+// (DESIGN.md "Effects"; docs/global.md). tests/global/test_effects.cpp
+// proves the skipped code paths change no pixel; this measures the time.
 //
 // For each case, renders the scene as the effects analysis plans it and
 // with every skippable code path forced on (RenderSettings::force), best
-// of R runs each, checks the two images are byte-identical, and prints a
-// Markdown table: seconds, rays, and the time saved. A last table compares
-// the integrator `auto` picks with the path tracer at the same flags where
-// the images are identical (direct at -m 1 without mirrors or glass).
-// When Part 2's `bench` lands, this becomes `bench effects`.
+// of R runs each, checks that the two images are byte-identical, and
+// prints a Markdown table: seconds, shadow rays, the time saved. A second
+// table compares the integrator `auto` picks with the path tracer at the
+// same flags where the images are identical (direct at -m 1 without
+// mirrors or glass).
 #include <algorithm>
-#include <cstdio>
-#include <cstdlib>
 #include <functional>
+#include <iostream>
 #include <memory>
 #include <string>
 #include <vector>
 
-#include "core/timer.h"
+#include "apps/bench/bench_command.h"
+#include "apps/bench/bench_util.h"
+#include "core/error.h"
 #include "render/integrator.h"
 #include "render/render_context.h"
 #include "render/renderer.h"
 #include "scene/effects.h"
 #include "scene/scene_loader.h"
 
-using namespace pt;
-
+namespace pt::bench {
 namespace {
+
+const char* const kUsage = "effects [-t N] [--repeat R]";
+
+const char* const kHelp = R"(bench effects: the time the effects analysis saves.
+
+  -t N          threads                                   [2]
+  --repeat R    runs per render; the fastest counts       [3]
+
+Cases: a diffuse sphere under the sky and a point light, the interior
+furnace box (walls that emit and reflect), and the asset scenes cbox,
+cbox_spheres, whitted and materials at small sizes. Each is rendered as
+planned and with every skippable code path forced on; the images must be
+byte-identical (the last column).
+)";
 
 struct Run {
     Image image;
@@ -107,21 +119,16 @@ const char* kFurnaceBox = R"({
     ]
 })";
 
-}  // namespace
-
-int main(int argc, char** argv) {
-    int threads = 2, repeat = 3;
-    for (int i = 1; i + 1 < argc; i += 2) {
-        std::string flag = argv[i];
-        if (flag == "--threads")
-            threads = std::max(1, std::atoi(argv[i + 1]));
-        else if (flag == "--repeat")
-            repeat = std::max(1, std::atoi(argv[i + 1]));
-        else {
-            std::fprintf(stderr, "usage: %s [--threads T] [--repeat R]\n", argv[0]);
-            return 2;
-        }
+int run_effects(const std::vector<std::string>& args) {
+    Args a("effects", args, {{"-t", 1}, {"--repeat", 1}, {"-h", 0}, {"--help", 0}});
+    if (a.has("-h") || a.has("--help")) {
+        std::cout << kHelp;
+        return kExitOk;
     }
+    if (!a.positionals().empty())
+        throw InputError("effects: unexpected argument '" + a.positionals()[0] +
+                         "' (see bench effects --help)");
+    const int threads = a.get_int("-t", 2, 1, 4096), repeat = a.get_int("--repeat", 3, 1, 1000);
     std::vector<Case> cases = {
         {"sphere under sky + point light",
          [] { return parse_json_scene(kSphereUnderSky, "sphere.json"); }, flags(3, 16, 4)},
@@ -174,5 +181,13 @@ int main(int argc, char** argv) {
                     to_string(kind), a.seconds, p.seconds,
                     a.image.data() == p.image.data() ? "yes" : "NO");
     }
-    return 0;
+    return kExitOk;
 }
+
+const BenchCommandRegistration kRegistration({"effects", kUsage,
+                                              "time saved by skipping code paths of absent "
+                                              "effects (images checked identical)",
+                                              run_effects});
+
+}  // namespace
+}  // namespace pt::bench
