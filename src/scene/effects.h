@@ -23,7 +23,7 @@
 //
 // Tests: tests/global/test_effects.cpp renders scenes without each effect
 // with its code path forced on and off (RenderSettings::force) and checks
-// the images are byte-identical; tools/effects_bench measures the savings.
+// the images are byte-identical; `bench effects` measures the savings.
 #pragma once
 
 #include <string>
