@@ -62,8 +62,8 @@ struct BSDFSample {
                      ///< picking that lobe (1 for a mirror, F or 1 - F for glass);
                      ///< 0 means "no sample" (ignore it)
     bool is_delta = false;  ///< drawn from a Dirac delta lobe
-    double eta = 1;  ///< n(wi side) / n(wo side) when wi is refracted, else 1 (for
-                     ///< Russian roulette, which discounts the (n_o / n_i)^2 in f)
+    double eta = 1;         ///< n(wi side) / n(wo side) when wi is refracted, else 1 (for
+                            ///< Russian roulette, which discounts the (n_o / n_i)^2 in f)
 
     bool valid() const { return pdf > 0; }
 };

@@ -123,7 +123,8 @@ TEST_CASE("chi2: glass picks reflection with probability F and refraction with 1
         CAPTURE(wo.z);
         DeltaLobe lobes[2];
         REQUIRE(bsdf.delta_lobes(wo, lobes) == 2);
-        std::vector<double> observed(2, 0.0), expected = {lobes[0].probability, lobes[1].probability};
+        std::vector<double> observed(2, 0.0),
+            expected = {lobes[0].probability, lobes[1].probability};
         const int n = 200000;
         Rng rng(uint64_t(1000 * (wo.z + 2)));
         int other = 0;
@@ -131,12 +132,16 @@ TEST_CASE("chi2: glass picks reflection with probability F and refraction with 1
             BSDFSample s = bsdf.sample_f(wo, rng.next_2d());
             REQUIRE(s.valid());
             REQUIRE(s.is_delta);
-            if (s.wi == lobes[0].wi && s.pdf == lobes[0].probability) observed[0] += 1;
-            else if (s.wi == lobes[1].wi && s.pdf == lobes[1].probability) observed[1] += 1;
-            else ++other;
+            if (s.wi == lobes[0].wi && s.pdf == lobes[0].probability)
+                observed[0] += 1;
+            else if (s.wi == lobes[1].wi && s.pdf == lobes[1].probability)
+                observed[1] += 1;
+            else
+                ++other;
         }
         CHECK(other == 0);
-        for (double& e : expected) e *= n;
+        for (double& e : expected)
+            e *= n;
         check_passes(chi2_test(observed, expected, per_test_significance()));
     }
 }
