@@ -155,7 +155,7 @@ TaskResult check_has_converged(const TaskSpec& spec, const GradeEnvironment& env
                 s.s1 += x, s.s2 += x * x, s.n = k + 1;
             run(s, 0.05);
         }
-    TaskResult r = log.finish(spec, param(spec, "max_mismatches", 0));
+    TaskResult r = log.finish(spec, param(spec, "max_mismatches", 0), "CS184's rule");
     if (r.status == TaskStatus::pass) {
         r.message = "agrees with CS184's rule on " +
                     std::to_string(log.cases() - log.allowed_count()) + " statistics; " +

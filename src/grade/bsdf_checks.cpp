@@ -184,7 +184,8 @@ TaskResult check_diffuse_sample_f(const TaskSpec& spec, const GradeEnvironment& 
     else
         log.mismatch(std::to_string(int(valid)) + " directions in " + std::to_string(nz * nphi) +
                      " cells of equal probability under cos / pi: " + chi.message);
-    TaskResult r = log.finish(spec, param(spec, "max_mismatches", 0));
+    TaskResult r = log.finish(spec, param(spec, "max_mismatches", 0),
+                              "the properties of a cosine-weighted sampler");
     r.details.insert(r.details.begin(), "chi-square test of " + std::to_string(int(valid)) +
                                             " directions in " + std::to_string(nz) + " x " +
                                             std::to_string(nphi) + " cells: " + chi.message);

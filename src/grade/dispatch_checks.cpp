@@ -123,7 +123,7 @@ TaskResult check_one_bounce_radiance(const TaskSpec& spec, const GradeEnvironmen
             }
         }
     }
-    return log.finish(spec, param(spec, "max_mismatches", 0));
+    return log.finish(spec, param(spec, "max_mismatches", 0), "the estimator the settings choose");
 }
 
 }  // namespace pt
