@@ -149,7 +149,8 @@ TaskResult check_image(const TaskSpec& spec, const GradeEnvironment& env) {
              v.reference_relmse > 0 ? fmt("%.3f", v.student_relmse / v.reference_relmse) : "-"},
             {"RMSE", fmt("%.4g", m.rmse)},
             {"PSNR", std::isinf(m.psnr) ? "inf dB" : fmt("%.2f dB", m.psnr)},
-            {"tile z-test at " + std::to_string(c.bias_spp) + " spp",
+            {c.settings.adaptive ? std::string("tile z-test, each pixel at the samples it took")
+                                 : "tile z-test at " + std::to_string(c.bias_spp) + " spp",
              std::to_string(v.tiles_failed) + " of " + std::to_string(v.tests) +
                  " tile-channels below the Sidak level " + fmt("%.3g", v.sidak_alpha) + " (alpha " +
                  fmt("%.3g", rule.alpha) + ", tiles " + std::to_string(rule.tile) + "x" +
