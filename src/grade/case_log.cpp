@@ -54,7 +54,8 @@ int CaseLog::allowed_count() const {
     return n;
 }
 
-TaskResult CaseLog::finish(const TaskSpec& spec, int max_mismatches) const {
+TaskResult CaseLog::finish(const TaskSpec& spec, int max_mismatches,
+                           const std::string& against) const {
     TaskResult r;
     r.metric = "mismatches";
     r.value = mismatches();
@@ -63,7 +64,7 @@ TaskResult CaseLog::finish(const TaskSpec& spec, int max_mismatches) const {
     r.status = mismatches() <= max_mismatches ? TaskStatus::pass : TaskStatus::fail;
     if (r.status == TaskStatus::pass) {
         int agreed = cases() - mismatches() - allowed_count();
-        r.message = "agrees with the reference on " + std::to_string(agreed) + " of " +
+        r.message = "agrees with " + against + " on " + std::to_string(agreed) + " of " +
                     std::to_string(cases()) + " cases";
         if (allowed_count() > 0)
             r.message += "; the other " + std::to_string(allowed_count()) +
@@ -77,7 +78,7 @@ TaskResult CaseLog::finish(const TaskSpec& spec, int max_mismatches) const {
             }
         }
         r.message = std::to_string(mismatches()) + " of " + std::to_string(cases()) +
-                    " cases disagree with the reference; first: " + first;
+                    " cases disagree with " + against + "; first: " + first;
     }
     for (const Category& c : categories_) {
         char line[256];

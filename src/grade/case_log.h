@@ -30,8 +30,11 @@ class CaseLog {
     int allowed_count() const;
 
     /// Fills a TaskResult: metric "mismatches", comparison "<=", the first
-    /// mismatches and per-category counts in details.
-    TaskResult finish(const TaskSpec& spec, int max_mismatches) const;
+    /// mismatches and per-category counts in details. `against` names what
+    /// the answers were compared with, for the message ("agrees with the
+    /// reference on ...", "... disagree with brute force").
+    TaskResult finish(const TaskSpec& spec, int max_mismatches,
+                      const std::string& against = "the reference") const;
 
   private:
     struct Category {

@@ -38,10 +38,41 @@ TaskResult check_intersect_triangle(const TaskSpec& spec, const GradeEnvironment
 /// spheres, every placement of [t_min, t_max] around the two roots.
 TaskResult check_intersect_sphere(const TaskSpec& spec, const GradeEnvironment& env);
 
-/// Part 2, bvh_intersect: the student's accelerator (bvh stage, with the
-/// reference intersection routines) against the linear scan on random
-/// rays through a scene: same closest hit (t, primitive) and same
-/// occlusion verdict.
-TaskResult check_accelerator(const TaskSpec& spec, const GradeEnvironment& env);
+/// Part 2, construct_bvh: the structure of the student's tree (every
+/// primitive in exactly one leaf, child boxes inside their parent, leaf
+/// boxes around their primitives, leaves of at most max_leaf_size unless
+/// their centroids coincide) on the graded scenes and on synthetic lists
+/// that break builders; the scene trees traversed by the reference against
+/// the linear scan.
+TaskResult check_construct_bvh(const TaskSpec& spec, const GradeEnvironment& env);
+
+/// Part 2, bbox_intersect: the slab test against its exact (long double)
+/// answer; zero and -0.0 direction components, origins on faces and edges
+/// and inside, every placement of [t0, t1]; the edge band as above.
+TaskResult check_bbox_intersect(const TaskSpec& spec, const GradeEnvironment& env);
+
+/// Part 2, bvh_intersect and bvh_has_intersection: the student's traversal
+/// of a reference-built tree, from the root and from inner nodes, against
+/// brute force over the node's primitives (closest hit; any hit with
+/// shadow-ray intervals).
+TaskResult check_bvh_intersect(const TaskSpec& spec, const GradeEnvironment& env);
+TaskResult check_bvh_has_intersection(const TaskSpec& spec, const GradeEnvironment& env);
+
+/// Part 3, diffuse_f: albedo / pi for wi above the surface, black below;
+/// either on the horizon (|wi.z| <= edge_band).
+TaskResult check_diffuse_f(const TaskSpec& spec, const GradeEnvironment& env);
+
+/// Part 3, diffuse_sample_f: every sample valid, unit, above the surface,
+/// pdf = cos / pi, f = albedo / pi (or the student's diffuse_f); the
+/// directions pass a chi-square test against cos / pi at `significance`.
+TaskResult check_diffuse_sample_f(const TaskSpec& spec, const GradeEnvironment& env);
+
+/// Part 3, one_bounce_radiance: equals the estimator the settings choose,
+/// with the same random numbers (dispatch_checks.cpp).
+TaskResult check_one_bounce_radiance(const TaskSpec& spec, const GradeEnvironment& env);
+
+/// Part 5, has_converged: CS184's interval rule on hand-made statistics;
+/// either answer where the rule says nothing reliable (adaptive_checks.cpp).
+TaskResult check_has_converged(const TaskSpec& spec, const GradeEnvironment& env);
 
 }  // namespace pt

@@ -4,6 +4,7 @@
 #include <ctime>
 
 #include "core/error.h"
+#include "core/stub_fallback.h"
 #include "core/timer.h"
 #include "grade/check_registry.h"
 #include "grade/isolation.h"
@@ -39,6 +40,9 @@ TaskResult grade_task(const TaskSpec& spec, const GradeEnvironment& env) {
                          "\"");
     TaskResult r;
     try {
+        // A handout stub's slow fallback (Part 2's linear scan) must not earn
+        // the points of the code it stands in for: it throws NotImplemented.
+        StubFallbacksAreNotImplemented strict;
         r = check->run(spec, env);
     } catch (const NotImplemented& e) {
         r = TaskResult{};

@@ -2,7 +2,8 @@
 // implementation and collects the results for the reports.
 //
 // A check that throws NotImplemented (a handout stub) makes its task "not
-// implemented" with 0 points; any other exception from student code fails
+// implemented" with 0 points (stubs with a slow fallback throw it too while
+// a task is graded: core/stub_fallback.h); any other exception from student code fails
 // the task with the exception's message. Neither stops the other tasks.
 // InputError (a bad manifest or a missing scene) is the grader's problem,
 // not the student's: it propagates, and `grade` exits with code 2.

@@ -57,11 +57,21 @@ uint64_t fnv1a(const std::string& s, uint64_t h = 1469598103934665603ull) {
 
 ImageCase parse_image_case(const json& j, const std::string& where) {
     if (!j.is_object()) throw InputError(where + ": expected an object");
-    const std::set<std::string> keys = {
-        "label",     "scene",  "integrator",         "width",
-        "height",    "spp",    "converged_spp",      "light_samples",
-        "max_depth", "direct", "accumulate_bounces", "max_mean_spp",
-        "bias_spp"};
+    const std::set<std::string> keys = {"label",
+                                        "scene",
+                                        "integrator",
+                                        "width",
+                                        "height",
+                                        "spp",
+                                        "converged_spp",
+                                        "light_samples",
+                                        "max_depth",
+                                        "direct",
+                                        "accumulate_bounces",
+                                        "max_mean_spp",
+                                        "bias_spp",
+                                        "samples_per_batch",
+                                        "max_tolerance"};
     for (auto it = j.begin(); it != j.end(); ++it)
         if (!keys.count(it.key())) throw InputError(where + ": unknown key \"" + it.key() + "\"");
     for (const char* k : {"scene", "integrator", "spp"})
@@ -95,7 +105,13 @@ ImageCase parse_image_case(const json& j, const std::string& where) {
     }
     if (j.contains("light_samples"))
         c.settings.light_samples = positive_int(j, "light_samples", where);
-    if (j.contains("max_depth")) c.settings.max_depth = positive_int(j, "max_depth", where);
+    if (j.contains("max_depth")) {  // 0: emission only (zero_bounce_radiance)
+        if (!j["max_depth"].is_number_integer() || j["max_depth"].get<long long>() < 0 ||
+            j["max_depth"].get<long long>() > 1000)
+            throw InputError(where + ".max_depth: expected an integer from 0 to 1000, got " +
+                             j["max_depth"].dump());
+        c.settings.max_depth = j["max_depth"].get<int>();
+    }
     if (j.contains("accumulate_bounces")) {
         if (!j["accumulate_bounces"].is_boolean())
             throw InputError(where + ".accumulate_bounces: expected true or false");
@@ -114,6 +130,19 @@ ImageCase parse_image_case(const json& j, const std::string& where) {
             throw InputError(where + ".max_mean_spp: expected a number");
         c.max_mean_spp = j["max_mean_spp"].get<double>();
         c.settings.adaptive = true;
+    }
+    if (j.contains("samples_per_batch") || j.contains("max_tolerance")) {
+        if (!c.max_mean_spp)
+            throw InputError(where +
+                             ": samples_per_batch and max_tolerance need max_mean_spp (adaptive "
+                             "sampling)");
+        if (j.contains("samples_per_batch"))
+            c.settings.samples_per_batch = positive_int(j, "samples_per_batch", where);
+        if (j.contains("max_tolerance")) {
+            if (!j["max_tolerance"].is_number() || !(j["max_tolerance"].get<double>() > 0))
+                throw InputError(where + ".max_tolerance: expected a positive number");
+            c.settings.max_tolerance = j["max_tolerance"].get<double>();
+        }
     }
     return c;
 }

@@ -8,10 +8,15 @@
 // Optional keys: "bias_spp" (samples per pixel of the student's render for
 // the bias test of noise_rule.h; default 16 x spp, at most converged_spp, or
 // spp itself when spp = converged_spp, i.e. when there is no noise),
-// "light_samples", "max_depth", "accumulate_bounces",
-// "direct" (light | hemisphere | mis), "max_mean_spp" (the mean number of
-// samples per pixel may not exceed it: adaptive sampling must stop).
+// "light_samples", "max_depth" (0: emission only), "accumulate_bounces",
+// "direct" (light | hemisphere | mis), "max_mean_spp" (turns adaptive
+// sampling on with `spp` as the maximum; the mean number of samples per
+// pixel may not exceed it: adaptive sampling must stop), with
+// "samples_per_batch" (32) and "max_tolerance" (0.05) as -a N TOL.
 // Without adaptive sampling every pixel must report exactly `spp` samples.
+// With it, the converged reference is rendered without it (unbiased, every
+// pixel at converged_spp), the reference runs at `spp` with it (the noise
+// to expect), and the bias test weighs each pixel by the samples it took.
 #pragma once
 
 #include <cstdint>

@@ -101,12 +101,13 @@ TaskResult check_image(const TaskSpec& spec, const GradeEnvironment& env) {
                         "]: the render is noisy (it depends on the seed), so converged_spp must "
                         "be at least 64, not equal to spp");
         }
-        Image student_bias =
+        RenderResult student_bias =
             c.bias_spp == c.settings.spp
-                ? student.image
-                : render_case(scene, c, mixed, c.bias_spp, env.seed, env.threads).image;
-        NoiseInputs inputs{student.image,     student_bias,        c.bias_spp, ref.converged,
+                ? student
+                : render_case(scene, c, mixed, c.bias_spp, env.seed, env.threads);
+        NoiseInputs inputs{student.image,     student_bias.image,  c.bias_spp, ref.converged,
                            ref.converged_spp, ref.sample_variance, ref.runs};
+        if (c.settings.adaptive) inputs.bias_counts = &student_bias.sample_counts;
         NoiseVerdict v = apply_noise_rule(inputs, rule);
         double mean_spp = 0;
         std::string samples = check_sample_counts(c, student.sample_counts, &mean_spp);
@@ -126,10 +127,18 @@ TaskResult check_image(const TaskSpec& spec, const GradeEnvironment& env) {
                        stem + "-heatmap.png", &out.heatmap_png);
         ImageMetrics m = compare_images(student.image, ref.converged);
         out.numbers = {
-            {"samples per pixel", std::to_string(c.settings.spp) + " (bias test at " +
-                                      std::to_string(c.bias_spp) + ", reference converged at " +
-                                      std::to_string(ref.converged_spp) + ")"},
-            {"mean samples per pixel (student)", fmt("%.4g", mean_spp)},
+            {"samples per pixel",
+             (c.settings.adaptive ? "at most " : "") + std::to_string(c.settings.spp) +
+                 (c.settings.adaptive
+                      ? " (adaptive: batches of " + std::to_string(c.settings.samples_per_batch) +
+                            ", tolerance " + fmt("%.3g", c.settings.max_tolerance) +
+                            "; reference converged at " + std::to_string(ref.converged_spp) +
+                            " without)"
+                      : " (bias test at " + std::to_string(c.bias_spp) +
+                            ", reference converged at " + std::to_string(ref.converged_spp) + ")")},
+            {"mean samples per pixel (student)",
+             fmt("%.4g", mean_spp) +
+                 (c.max_mean_spp ? " (limit " + fmt("%.4g", *c.max_mean_spp) + ")" : "")},
             {"student relMSE", fmt("%.4g", v.student_relmse)},
             {"reference relMSE at the same spp",
              fmt("%.4g", v.reference_relmse) + " (mean of " + std::to_string(runs) + " renders)"},
@@ -140,7 +149,8 @@ TaskResult check_image(const TaskSpec& spec, const GradeEnvironment& env) {
              v.reference_relmse > 0 ? fmt("%.3f", v.student_relmse / v.reference_relmse) : "-"},
             {"RMSE", fmt("%.4g", m.rmse)},
             {"PSNR", std::isinf(m.psnr) ? "inf dB" : fmt("%.2f dB", m.psnr)},
-            {"tile z-test at " + std::to_string(c.bias_spp) + " spp",
+            {c.settings.adaptive ? std::string("tile z-test, each pixel at the samples it took")
+                                 : "tile z-test at " + std::to_string(c.bias_spp) + " spp",
              std::to_string(v.tiles_failed) + " of " + std::to_string(v.tests) +
                  " tile-channels below the Sidak level " + fmt("%.3g", v.sidak_alpha) + " (alpha " +
                  fmt("%.3g", rule.alpha) + ", tiles " + std::to_string(rule.tile) + "x" +

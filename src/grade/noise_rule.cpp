@@ -19,8 +19,13 @@ NoiseVerdict apply_noise_rule(const NoiseInputs& in, const NoiseRule& rule) {
     require_same_size(in.sample_variance, converged, "reference variance and converged images");
     for (const Image& q : in.runs)
         require_same_size(q, converged, "reference renders");
-    const double variance_scale =
-        1.0 / std::max(in.bias_spp, 1) + 1.0 / std::max(in.converged_spp, 1);
+    if (in.bias_counts && in.bias_counts->size() != size_t(converged.width()) * converged.height())
+        throw InputError("noise rule: sample counts of another size than the images");
+    auto variance_scale = [&](int x, int y) {
+        double m = in.bias_counts ? double((*in.bias_counts)[size_t(y) * converged.width() + x])
+                                  : double(in.bias_spp);
+        return 1.0 / std::max(m, 1.0) + 1.0 / std::max(in.converged_spp, 1);
+    };
     // Rare events: a pixel that a sliver of geometry covers with probability
     // p < 1/N may show no spread in the reference at all, and the student's
     // render may still catch the sliver. When the image is noisy, each
@@ -67,7 +72,7 @@ NoiseVerdict apply_noise_rule(const NoiseInputs& in, const NoiseRule& rule) {
                         double r = converged.at(x, y)[c];
                         diff += student.at(x, y)[c] - r;
                         level += std::fabs(r);
-                        var += pixel_variance(x, y, c) * variance_scale;
+                        var += pixel_variance(x, y, c) * variance_scale(x, y);
                     }
                 }
                 double tau = rule.tau_rel * (level / count + 0.01);

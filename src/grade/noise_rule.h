@@ -21,6 +21,7 @@
 //    to a region, which a global average dilutes): the image is cut into
 //    tiles of `tile` x `tile` pixels; for each tile T and channel c,
 //        z = mean_T(S' - R) / sqrt(sum_T s2_p (1/m + 1/N) / |T|^2 + tau_T^2)
+//    (with adaptive sampling, 1/n_p for 1/m: n_p the samples pixel p took)
 //    where tau_T = tau_rel * (mean_T |R| + 0.01) absorbs rounding where
 //    there is no noise. In a noisy image s2_p is at least 3 c_p^2 / N, c_p
 //    the largest difference between R_p and a neighbour: an edge pixel that
@@ -78,6 +79,9 @@ struct NoiseInputs {
     const Image&
         sample_variance;  ///< s2: per-sample variance of the reference, per pixel and channel
     const std::vector<Image>& runs;  ///< Q_1..Q_K: the reference at n spp
+    /// Adaptive sampling: the samples each pixel of S' took (row major), so
+    /// that pixel p's variance is s2_p (1/n_p + 1/N); null: every pixel took m.
+    const std::vector<uint32_t>* bias_counts = nullptr;
 };
 
 /// Applies the rule; throws InputError when sizes differ or `runs` is empty.

@@ -45,7 +45,12 @@ struct Converged {
 
 /// The converged image as the mean of batches, and the per-sample variance
 /// from the spread of the batch means (reference_renders.h).
-Converged render_converged(const Scene& scene, const ImageCase& c, const GradeEnvironment& env) {
+Converged render_converged(const Scene& scene, const ImageCase& case_in,
+                           const GradeEnvironment& env) {
+    // Without adaptive sampling: every batch takes all its samples, so the
+    // mean is unbiased and the spread of the batch means is the per-sample variance.
+    ImageCase c = case_in;
+    c.settings.adaptive = false;
     const int batches = std::min(kBatches, c.converged_spp);
     const int batch_spp = c.converged_spp / batches;
     std::vector<Image> parts;

@@ -1,6 +1,8 @@
 #include "grade/stage_mix.h"
 
 #include "core/error.h"
+#include "render/mis.h"
+#include "render/render_context.h"
 
 namespace pt {
 namespace {
@@ -13,33 +15,55 @@ struct Slot {
     void (*copy)(Stages& to, const Stages& from);
 };
 
+#define PT_FUNCTION_SLOT(stage_name, member)                                                       \
+    {                                                                                              \
+#stage_name "." #member, Stage::stage_name,                                                \
+            [](Stages & to, const Stages& from) { to.stage_name.member = from.stage_name.member; } \
+    }
+
 const Slot kSlots[] = {
     {"camera", Stage::camera, [](Stages& to, const Stages& from) { to.camera = from.camera; }},
-    {"camera.generate_ray", Stage::camera,
-     [](Stages& to, const Stages& from) { to.camera.generate_ray = from.camera.generate_ray; }},
-    {"camera.raytrace_pixel", Stage::camera,
-     [](Stages& to, const Stages& from) { to.camera.raytrace_pixel = from.camera.raytrace_pixel; }},
+    PT_FUNCTION_SLOT(camera, generate_ray),
+    PT_FUNCTION_SLOT(camera, raytrace_pixel),
     {"intersect", Stage::intersect,
      [](Stages& to, const Stages& from) { to.intersect = from.intersect; }},
-    {"intersect.intersect_triangle", Stage::intersect,
-     [](Stages& to, const Stages& from) {
-         to.intersect.intersect_triangle = from.intersect.intersect_triangle;
-     }},
-    {"intersect.intersect_sphere", Stage::intersect,
-     [](Stages& to, const Stages& from) {
-         to.intersect.intersect_sphere = from.intersect.intersect_sphere;
-     }},
+    PT_FUNCTION_SLOT(intersect, intersect_triangle),
+    PT_FUNCTION_SLOT(intersect, intersect_sphere),
     {"bvh", Stage::bvh, [](Stages& to, const Stages& from) { to.bvh = from.bvh; }},
+    {"direct", Stage::direct, [](Stages& to, const Stages& from) { to.direct = from.direct; }},
+    PT_FUNCTION_SLOT(direct, diffuse_f),
+    PT_FUNCTION_SLOT(direct, diffuse_sample_f),
+    PT_FUNCTION_SLOT(direct, zero_bounce_radiance),
+    PT_FUNCTION_SLOT(direct, estimate_direct_lighting_hemisphere),
+    PT_FUNCTION_SLOT(direct, estimate_direct_lighting_importance),
+    PT_FUNCTION_SLOT(direct, one_bounce_radiance),
+    {"adaptive", Stage::adaptive,
+     [](Stages& to, const Stages& from) { to.adaptive = from.adaptive; }},
+    PT_FUNCTION_SLOT(adaptive, has_converged),
     {"global", Stage::global, [](Stages& to, const Stages& from) { to.global = from.global; }},
-    {"global.at_least_one_bounce_radiance", Stage::global,
-     [](Stages& to, const Stages& from) {
-         to.global.at_least_one_bounce_radiance = from.global.at_least_one_bounce_radiance;
-     }},
-    {"global.est_radiance_global_illumination", Stage::global,
-     [](Stages& to, const Stages& from) {
-         to.global.est_radiance_global_illumination = from.global.est_radiance_global_illumination;
-     }},
+    PT_FUNCTION_SLOT(global, at_least_one_bounce_radiance),
+    PT_FUNCTION_SLOT(global, est_radiance_global_illumination),
 };
+
+#undef PT_FUNCTION_SLOT
+
+/// The reference's one_bounce_radiance, but calling the estimators of the
+/// context's stage table: the reference's own calls its estimators
+/// directly, so a student estimator switched into the table alone would
+/// never run.
+Color one_bounce_through_table(const RenderContext& context, const Ray& ray,
+                               const SurfaceInteraction& isect, Rng& rng) {
+    const DirectStage& stage = context.stages.direct;
+    switch (context.settings.direct) {
+        case DirectStrategy::hemisphere:
+            return stage.estimate_direct_lighting_hemisphere(context, ray, isect, rng);
+        case DirectStrategy::light:
+            return stage.estimate_direct_lighting_importance(context, ray, isect, rng);
+        case DirectStrategy::mis:
+            return estimate_direct_lighting_mis(context, ray, isect, rng);
+    }
+    return Color(0);
+}
 
 }  // namespace
 
@@ -54,6 +78,7 @@ Stages mix_stages(const Stages& reference, const Stages& student,
                   const std::vector<std::string>& slots, const std::string& where) {
     Stages mixed = reference;
     StageSet set = StageSet::none();
+    bool estimator = false, one_bounce = false;
     for (const std::string& name : slots) {
         const Slot* found = nullptr;
         for (const Slot& s : kSlots)
@@ -67,7 +92,10 @@ Stages mix_stages(const Stages& reference, const Stages& student,
         }
         found->copy(mixed, student);
         set = set.with(found->stage);
+        estimator = estimator || name.rfind("direct.estimate_", 0) == 0;
+        one_bounce = one_bounce || name == "direct" || name == "direct.one_bounce_radiance";
     }
+    if (estimator && !one_bounce) mixed.direct.one_bounce_radiance = one_bounce_through_table;
     mixed.student = set;
     return mixed;
 }

@@ -12,11 +12,17 @@
 namespace pt {
 
 /// `reference` with the named slots taken from `student`. A slot is a
-/// whole stage ("camera", "intersect", "bvh") or one function
-/// ("camera.generate_ray", "camera.raytrace_pixel",
-/// "intersect.intersect_triangle", "intersect.intersect_sphere"). The
-/// result's `student` set lists every stage with a student slot. Throws
-/// InputError naming `where` for an unknown slot.
+/// whole stage ("camera", "intersect", "bvh", "direct", "adaptive") or one
+/// function ("camera.generate_ray", "direct.zero_bounce_radiance",
+/// "adaptive.has_converged", ...: known_slots()). The result's `student`
+/// set lists every stage with a student slot. Throws InputError naming
+/// `where` for an unknown slot.
+///
+/// A direct-lighting estimator slot ("direct.estimate_direct_lighting_*")
+/// without "direct.one_bounce_radiance" also replaces one_bounce_radiance
+/// by one that dispatches through the table (the reference's calls the
+/// reference estimators directly), so that the student's estimator is what
+/// the renderer runs.
 Stages mix_stages(const Stages& reference, const Stages& student,
                   const std::vector<std::string>& slots, const std::string& where);
 

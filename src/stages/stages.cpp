@@ -30,7 +30,11 @@ Stages make_stages(StageSet student, TriangleTest triangle_test) {
                                                                  : reference::intersect_triangle,
                        reference::intersect_sphere};
     }
-    s.bvh = {student.contains(Stage::bvh) ? build_student_bvh : make_reference_bvh};
+    if (student.contains(Stage::bvh)) {
+        s.bvh = {build_student_bvh, student::tree_functions()};
+    } else {
+        s.bvh = {make_reference_bvh, reference::tree_functions()};
+    }
     s.adaptive = {student.contains(Stage::adaptive) ? student::has_converged : reference::has_converged};
     if (student.contains(Stage::direct)) {
         s.direct = {student::diffuse_f,

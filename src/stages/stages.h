@@ -12,6 +12,7 @@
 
 #include "stages/accelerator.h"
 #include "stages/adaptive.h"
+#include "stages/bvh.h"
 #include "stages/camera.h"
 #include "stages/direct.h"
 #include "stages/global.h"
@@ -36,6 +37,10 @@ using BuildAcceleratorFn = std::unique_ptr<Accelerator> (*)(const Scene& scene,
 struct BvhStage {
     /// Builds the scene's BVH; its queries must use `intersect`'s routines.
     BuildAcceleratorFn build;
+    /// The four handout functions of the same side (student or reference),
+    /// one by one: the grader builds and queries student-style trees with
+    /// them (make_tree_bvh), so that each is graded on its own.
+    BvhFunctions tree;
 };
 
 struct Stages {

@@ -1,16 +1,25 @@
 // Calibration of the image rule, skipped in the normal suite (it grades
 // hundreds of seeds). Run it with
 //     build/tests/test_grading -tc="calibration*" --no-skip
-// (PT_CALIBRATION_SEEDS=N changes the number of seeds, default 1000). It
-// prints the distribution of the two statistics of the noise rule for the
-// reference graded as a student, and the same figures for the Part 1
-// fixtures: the false-failure rate and the margins in docs/grading.md.
+// Environment: PT_CALIBRATION_SEEDS=N (default 1000) seeds for the
+// reference, PT_CALIBRATION_PARTS=1,3,5 (default 1) the parts whose image
+// tasks are measured, PT_CALIBRATION_STUDENT=textbook to grade CS184's
+// has_converged (no rare-event guard) instead of the reference,
+// PT_CALIBRATION_TASKS=part3.5,... to measure only these tasks,
+// PT_CALIBRATION_ALPHA and PT_CALIBRATION_BIAS_SPP to try other rules.
+// It prints, per image case, the distribution of the two statistics of the
+// noise rule (error ratio and worst tile |z|) for the reference graded as a
+// student, and then the failure count of every fixture of those parts over
+// min(N, 50) seeds with the same figures for image tasks: the
+// false-failure rate and the power in docs/grading.md.
 #include <doctest/doctest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <map>
+#include <sstream>
 
 #include "fixtures/fixtures.h"
 #include "grading_helpers.h"
@@ -18,11 +27,16 @@
 using namespace pt;
 using namespace pt::testing;
 
+namespace pt::fixtures {
+bool textbook_has_converged(const PixelStatistics& s, double tol);
+}
+
 namespace {
 
 struct Figures {
-    std::vector<double> ratio;    ///< student relMSE / reference relMSE, noisy case
-    std::vector<double> worst_z;  ///< largest |z| of the tile test, noisy case
+    std::vector<double> ratio;     ///< student relMSE / reference relMSE
+    std::vector<double> worst_z;   ///< largest |z| of the tile test
+    std::vector<double> mean_spp;  ///< mean samples per pixel (adaptive cases)
     int failures = 0;
 };
 
@@ -31,34 +45,41 @@ double parse_figure(const std::string& text, const std::string& after) {
     return at == std::string::npos ? NAN : std::atof(text.c_str() + at + after.size());
 }
 
-/// The manifest's image task, with PT_CALIBRATION_ALPHA and
-/// PT_CALIBRATION_BIAS_SPP (noisy case) applied when they are set.
-TaskSpec image_task() {
-    TaskSpec image;
-    for (const TaskSpec& t : part1_manifest().tasks)
-        if (t.type == TaskType::image) image = t;
-    if (const char* a = std::getenv("PT_CALIBRATION_ALPHA")) image.params["alpha"] = std::atof(a);
+/// A task with PT_CALIBRATION_ALPHA and PT_CALIBRATION_BIAS_SPP applied.
+TaskSpec calibrated(TaskSpec t) {
+    if (t.type != TaskType::image) return t;
+    if (const char* a = std::getenv("PT_CALIBRATION_ALPHA")) t.params["alpha"] = std::atof(a);
     if (const char* b = std::getenv("PT_CALIBRATION_BIAS_SPP"))
-        image.params["cases"][1]["bias_spp"] = std::atoi(b);
-    return image;
+        for (auto& c : t.params["cases"])
+            if (c.value("converged_spp", 1024) != c["spp"].get<int>()) c["bias_spp"] = std::atoi(b);
+    return t;
 }
 
-Figures measure(const Stages& student, int seeds) {
-    Figures f;
-    TaskSpec image = image_task();
+/// Grades `task` on seeds 1..seeds; figures per case (by case index).
+std::map<size_t, Figures> measure(const TaskSpec& task, const Stages& student, int seeds,
+                                  int* task_failures) {
+    std::map<size_t, Figures> f;
+    *task_failures = 0;
     for (int seed = 1; seed <= seeds; ++seed) {
-        TaskResult r = grade_task(image, environment(student, uint64_t(seed)));
-        f.failures += r.status != TaskStatus::pass;
-        const ImageCaseResult& noisy = r.images.back();
-        for (const auto& [name, value] : noisy.numbers) {
-            if (name == "student / reference relMSE") f.ratio.push_back(std::atof(value.c_str()));
-            if (name == "worst tile") f.worst_z.push_back(parse_figure(value, "|z| = "));
+        TaskResult r = grade_task(task, environment(student, uint64_t(seed)));
+        *task_failures += r.status != TaskStatus::pass;
+        for (size_t i = 0; i < r.images.size(); ++i) {
+            Figures& c = f[i];
+            c.failures += !r.images[i].pass;
+            for (const auto& [name, value] : r.images[i].numbers) {
+                if (name == "student / reference relMSE")
+                    c.ratio.push_back(std::atof(value.c_str()));
+                if (name == "worst tile") c.worst_z.push_back(parse_figure(value, "|z| = "));
+                if (name == "mean samples per pixel (student)")
+                    c.mean_spp.push_back(std::atof(value.c_str()));
+            }
         }
     }
     return f;
 }
 
 std::string summary(std::vector<double> v) {
+    if (v.empty()) return "-";
     std::sort(v.begin(), v.end());
     double mean = 0, var = 0;
     for (double x : v)
@@ -74,35 +95,66 @@ std::string summary(std::vector<double> v) {
     return buf;
 }
 
+void print(const std::string& who, const TaskSpec& task, const std::map<size_t, Figures>& f,
+           int seeds, int task_failures) {
+    std::printf("%s, %s, %d seeds: %d task failures\n", who.c_str(), task.id.c_str(), seeds,
+                task_failures);
+    for (const auto& [i, c] : f) {
+        std::printf("  case %zu (%s): %d failures\n    ratio:   %s\n    worst z: %s\n", i + 1,
+                    task.params["cases"][i].value("label", std::string("?")).c_str(), c.failures,
+                    summary(c.ratio).c_str(), summary(c.worst_z).c_str());
+        if (!c.mean_spp.empty()) std::printf("    mean spp: %s\n", summary(c.mean_spp).c_str());
+    }
+    std::fflush(stdout);
+}
+
+bool selected(const std::string& id) {
+    const char* list = std::getenv("PT_CALIBRATION_TASKS");
+    return !list || ("," + std::string(list) + ",").find("," + id + ",") != std::string::npos;
+}
+
+std::vector<int> parts_to_measure() {
+    std::vector<int> parts;
+    std::stringstream list(std::getenv("PT_CALIBRATION_PARTS") ? std::getenv("PT_CALIBRATION_PARTS")
+                                                               : "1");
+    std::string item;
+    while (std::getline(list, item, ','))
+        parts.push_back(std::atoi(item.c_str()));
+    return parts;
+}
+
 }  // namespace
 
 TEST_CASE("calibration: the reference and the fixtures over many seeds" * doctest::skip()) {
-    int seeds =
-        std::getenv("PT_CALIBRATION_SEEDS") ? std::atoi(std::getenv("PT_CALIBRATION_SEEDS")) : 1000;
-    Figures ref = measure(reference_stages(), seeds);
-    TaskSpec image = image_task();
-    std::printf(
-        "alpha %g, bias_spp %s\n", image.params["alpha"].get<double>(),
-        image.params["cases"][1].value("bias_spp", nlohmann::json("default")).dump().c_str());
-    std::printf("reference as student, %d seeds: %d failures\n  ratio:   %s\n  worst z: %s\n",
-                seeds, ref.failures, summary(ref.ratio).c_str(), summary(ref.worst_z).c_str());
-    for (const fixtures::Fixture& fx : fixtures::part1_fixtures()) {
-        int n = std::min(seeds, 50);
-        if (fx.failing_task == "part1.2") {
-            Figures f = measure(fixtures::stages_with(fx), n);
-            std::printf("%s, %d seeds: %d failures\n  ratio:   %s\n  worst z: %s\n",
-                        fx.name.c_str(), n, f.failures, summary(f.ratio).c_str(),
-                        summary(f.worst_z).c_str());
-            continue;
+    const char* env_seeds = std::getenv("PT_CALIBRATION_SEEDS");
+    const int seeds = env_seeds ? std::atoi(env_seeds) : 1000;
+    Stages reference = reference_stages();
+    std::string who = "reference as student";
+    if (const char* s = std::getenv("PT_CALIBRATION_STUDENT"); s && std::string(s) == "textbook") {
+        reference.adaptive.has_converged = fixtures::textbook_has_converged;
+        who = "textbook has_converged as student";
+    }
+    for (int part : parts_to_measure()) {
+        for (const TaskSpec& t : manifest(part).tasks) {
+            if (t.type != TaskType::image || !selected(t.id)) continue;
+            int failures = 0;
+            TaskSpec task = calibrated(t);
+            auto f = measure(task, reference, seeds, &failures);
+            print(who, task, f, seeds, failures);
         }
-        int failures = 0;
-        Stages student = fixtures::stages_with(fx);
-        for (const TaskSpec& t : part1_manifest().tasks)
-            if (t.id == fx.failing_task)
-                for (int seed = 1; seed <= n; ++seed)
-                    failures += grade_task(t, environment(student, uint64_t(seed))).status !=
-                                TaskStatus::pass;
-        std::printf("%s, %d seeds: %d failures of %s\n", fx.name.c_str(), n, failures,
-                    fx.failing_task.c_str());
+        const int n = std::min(seeds, 50);
+        for (const fixtures::Fixture& fx : fixtures::fixtures_of_part(part)) {
+            for (const TaskSpec& t : manifest(part).tasks) {
+                if (!fx.fails(t.id) || !selected(t.id)) continue;
+                int failures = 0;
+                TaskSpec task = calibrated(t);
+                auto f = measure(task, fixtures::stages_with(fx), n, &failures);
+                if (task.type == TaskType::image)
+                    print("fixture '" + fx.name + "'", task, f, n, failures);
+                else
+                    std::printf("fixture '%s', %s, %d seeds: %d task failures\n", fx.name.c_str(),
+                                task.id.c_str(), n, failures);
+            }
+        }
     }
 }

@@ -2,12 +2,15 @@
 // manifests are read strictly.
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
 #include "core/error.h"
+#include "core/stub_fallback.h"
 #include "grade/check_registry.h"
 #include "grading_helpers.h"
+#include "render/render_context.h"
 #include "stages/camera.h"
 
 using namespace pt;
@@ -15,7 +18,9 @@ using namespace pt::testing;
 
 namespace {
 
-/// A table whose every Part 1 function throws like a handout stub.
+/// A table whose every student function behaves like its handout stub:
+/// throws NotImplemented, or (Part 2's build and traversals) falls back on
+/// something slow but correct after calling stub_fallback.
 Stages stub_stages() {
     Stages s = reference_stages();
     s.camera.generate_ray = [](const Camera&, double, double, Vec2) -> Ray {
@@ -30,7 +35,91 @@ Stages stub_stages() {
     s.intersect.intersect_sphere = [](const Sphere&, const Ray&) -> std::optional<Hit> {
         throw NotImplemented(1, "4", "intersect_sphere");
     };
+    s.bvh.tree.construct_bvh = [](std::vector<BVHPrimitive>& p, size_t start, size_t end, size_t) {
+        stub_fallback(2, "1", "construct_bvh", "one leaf of every primitive");
+        return reference::construct_bvh(p, start, end, end - start);
+    };
+    s.bvh.tree.bbox_intersect = [](const BBox&, const Ray&, double&, double&) -> bool {
+        throw NotImplemented(2, "2", "bbox_intersect");
+    };
+    s.bvh.tree.bvh_intersect = [](const BVHTree& bvh, const Ray& ray, const BVHNode*) {
+        stub_fallback(2, "3", "bvh_intersect", "a linear scan");
+        std::optional<Hit> best;
+        for (size_t i = 0; i < bvh.primitives.size(); ++i)
+            if (std::optional<Hit> h = bvh.intersect_primitive(i, ray);
+                h && BVHTree::closer(*h, best))
+                best = h;
+        return best;
+    };
+    s.bvh.tree.bvh_has_intersection = [](const BVHTree& bvh, const Ray& ray, const BVHNode*) {
+        stub_fallback(2, "4", "bvh_has_intersection", "a linear scan");
+        for (size_t i = 0; i < bvh.primitives.size(); ++i)
+            if (bvh.intersect_primitive(i, ray)) return true;
+        return false;
+    };
+    s.direct.diffuse_f = [](const Color&, const Vec3&, const Vec3&) -> Color {
+        throw NotImplemented(3, "1", "diffuse_f");
+    };
+    s.direct.diffuse_sample_f = [](const Color&, const Vec3&, Vec2) -> BSDFSample {
+        throw NotImplemented(3, "2", "diffuse_sample_f");
+    };
+    s.direct.zero_bounce_radiance = [](const RenderContext&, const Ray&,
+                                       const SurfaceInteraction&) -> Color {
+        throw NotImplemented(3, "3", "zero_bounce_radiance");
+    };
+    s.direct.estimate_direct_lighting_hemisphere = [](const RenderContext&, const Ray&,
+                                                      const SurfaceInteraction&, Rng&) -> Color {
+        throw NotImplemented(3, "4", "estimate_direct_lighting_hemisphere");
+    };
+    s.direct.estimate_direct_lighting_importance = [](const RenderContext&, const Ray&,
+                                                      const SurfaceInteraction&, Rng&) -> Color {
+        throw NotImplemented(3, "5", "estimate_direct_lighting_importance");
+    };
+    s.direct.one_bounce_radiance = [](const RenderContext&, const Ray&, const SurfaceInteraction&,
+                                      Rng&) -> Color {
+        throw NotImplemented(3, "6", "one_bounce_radiance");
+    };
+    s.adaptive.has_converged = [](const PixelStatistics&, double) -> bool {
+        throw NotImplemented(5, "1", "has_converged");
+    };
     return s;
+}
+
+std::vector<PartManifest> all_manifests() {
+    std::vector<PartManifest> all;
+    for (int part : graded_parts())
+        all.push_back(manifest(part));
+    return all;
+}
+
+/// Whether this build's student code of `part` is the handout's (its first
+/// function still throws NotImplemented or falls back).
+bool handout_of_part(int part) {
+    StubFallbacksAreNotImplemented strict;
+    try {
+        switch (part) {
+            case 1: {
+                Camera c;
+                c.finalize();
+                student::generate_ray(c, 0.5, 0.5, Vec2(0.5, 0.5));
+                break;
+            }
+            case 2: {
+                std::vector<BVHPrimitive> p(1);
+                student::construct_bvh(p, 0, 1, 4);
+                break;
+            }
+            case 3:
+                student::diffuse_f(Color(1), Vec3(0, 0, 1), Vec3(0, 0, 1));
+                break;
+            case 5:
+                student::has_converged(PixelStatistics{}, 0.05);
+                break;
+        }
+    } catch (const NotImplemented&) {
+        return true;
+    }
+    return false;
 }
 
 std::string write_manifest(const std::string& name, const std::string& text) {
@@ -42,38 +131,64 @@ std::string write_manifest(const std::string& name, const std::string& text) {
 
 }  // namespace
 
-TEST_CASE("stubs earn 0 points with 'not implemented' on every task") {
+TEST_CASE("stubs earn 0 points with 'not implemented' on every task of every part") {
     Stages stubs = stub_stages();
-    GradeReport report = grade_all({part1_manifest()}, environment(stubs, 1));
-    REQUIRE(report.tasks.size() == 4);
+    GradeReport report = grade_all(all_manifests(), environment(stubs, 1));
+    REQUIRE(report.tasks.size() == 17);
     for (const TaskResult& t : report.tasks) {
         INFO(t.id << ": " << t.message);
         CHECK(t.status == TaskStatus::not_implemented);
         CHECK(t.points == 0);
         CHECK(t.message.find("not implemented yet") != std::string::npos);
+        CHECK(std::isnan(t.value));
     }
     CHECK(report.points() == 0);
-    CHECK(report.max_points() == 100);
+    CHECK(report.max_points() == 400);
     CHECK_FALSE(report.all_passed());
+}
+
+TEST_CASE("a slow fallback is 'not implemented' for its task, not a pass on its correctness") {
+    // Part 2 with only construct_bvh written: the traversal tasks still fall
+    // back on the linear scan, which would agree with brute force.
+    Stages s = stub_stages();
+    s.bvh.tree.construct_bvh = reference::construct_bvh;
+    s.bvh.tree.bbox_intersect = reference::bbox_intersect;
+    GradeReport report = grade_all({manifest(2)}, environment(s, 1));
+    REQUIRE(report.tasks.size() == 5);
+    CHECK(report.tasks[0].status == TaskStatus::pass);  // construct_bvh
+    CHECK(report.tasks[1].status == TaskStatus::pass);  // bbox_intersect
+    for (size_t i : {2, 3, 4}) {
+        INFO(report.tasks[i].id << ": " << report.tasks[i].message);
+        CHECK(report.tasks[i].status == TaskStatus::not_implemented);
+    }
+    CHECK(report.tasks[2].message == "Part 2, task 3: bvh_intersect is not implemented yet");
+    CHECK(report.tasks[3].message == "Part 2, task 4: bvh_has_intersection is not implemented yet");
+    // Outside the grader the fallback only says so, once, and works.
+    std::vector<BVHPrimitive> p(3);
+    CHECK(stub_stages().bvh.tree.construct_bvh(p, 0, 3, 1)->is_leaf());
+    {
+        StubFallbacksAreNotImplemented strict;
+        CHECK_THROWS_AS(stub_stages().bvh.tree.construct_bvh(p, 0, 3, 1), NotImplemented);
+    }
+    // In a child process too (grade's default).
+    GradeReport isolated = grade_all({manifest(2)}, environment(stub_stages(), 1), nullptr, 30.0);
+    for (const TaskResult& t : isolated.tasks)
+        CHECK(t.status == TaskStatus::not_implemented);
 }
 
 TEST_CASE("the stubs of this build (when it is the handout) grade as not implemented") {
     Stages student = make_stages(StageSet::all());
-    bool handout = false;
-    try {
-        Camera c;
-        c.finalize();
-        student::generate_ray(c, 0.5, 0.5, Vec2(0.5, 0.5));
-    } catch (const NotImplemented&) {
-        handout = true;
+    for (int part : graded_parts()) {
+        if (!handout_of_part(part)) {
+            MESSAGE("this build has a student's Part " << part << ", not the handout: skipped");
+            continue;
+        }
+        GradeReport report = grade_all({manifest(part)}, environment(student, 1));
+        for (const TaskResult& t : report.tasks) {
+            INFO(t.id << ": " << t.message);
+            CHECK(t.status == TaskStatus::not_implemented);
+        }
     }
-    if (!handout) {
-        MESSAGE("this build has a student's generate_ray, not the handout stub: skipped");
-        return;
-    }
-    GradeReport report = grade_all({part1_manifest()}, environment(student, 1));
-    for (const TaskResult& t : report.tasks)
-        CHECK(t.status == TaskStatus::not_implemented);
 }
 
 TEST_CASE("a student function that throws something else fails its task with the message") {
@@ -89,19 +204,30 @@ TEST_CASE("a student function that throws something else fails its task with the
     }
 }
 
-TEST_CASE(
-    "the Part 1 manifest names registered checks, and every part without a manifest is noted") {
-    const PartManifest& m = part1_manifest();
-    CHECK(m.part == 1);
-    CHECK(m.tasks.size() == 4);
-    double points = 0;
-    for (const TaskSpec& t : m.tasks) {
-        CHECK(find_check(t.check) != nullptr);
-        CHECK(t.id.rfind("part1.", 0) == 0);
-        points += t.points;
+TEST_CASE("the manifests name registered checks, 100 points each; Part 4's absence is noted") {
+    for (int part : graded_parts()) {
+        const PartManifest& m = manifest(part);
+        CHECK(m.part == part);
+        double points = 0;
+        for (const TaskSpec& t : m.tasks) {
+            INFO(t.id);
+            CHECK(find_check(t.check) != nullptr);
+            CHECK(t.id.rfind("part" + std::to_string(part) + ".", 0) == 0);
+            points += t.points;
+        }
+        CHECK(points == 100);
     }
-    CHECK(points == 100);
+    CHECK(manifest(1).tasks.size() == 4);
+    CHECK(manifest(2).tasks.size() == 5);
+    CHECK(manifest(3).tasks.size() == 6);
+    CHECK(manifest(5).tasks.size() == 2);
     std::vector<std::string> notes;
+    std::vector<PartManifest> project = read_manifests(source_dir() + "/assignments", &notes);
+    CHECK(project.size() == 4);
+    REQUIRE(notes.size() == 1);
+    CHECK(notes[0].find("Part 4") != std::string::npos);
+
+    notes.clear();
     std::string dir = output_dir() + "/manifests/only_part1";
     std::filesystem::create_directories(dir + "/part1");
     std::filesystem::copy_file(source_dir() + "/assignments/part1/grading.json",
