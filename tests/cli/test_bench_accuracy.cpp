@@ -66,7 +66,8 @@ TEST_CASE(
     REQUIRE(r.exit_code == 0);
     for (const char* file :
          {"cbox_accuracy.md", "cbox_accuracy.json", "cbox_accuracy.png", "cbox_reference.png",
-          "cbox_equal_time.png", "cbox_equal_time_light.png", "cbox_equal_time_mis.png"})
+          "cbox_equal_time.png", "cbox_equal_time_light.png", "cbox_equal_time_mis.png",
+          "cbox_equal_time_mis_error.png", "cbox_equal_time_adaptive_rate.png"})
         CHECK(test::file_exists(dir + "/" + file));
     CHECK(test::read_file(dir + "/cbox_accuracy.md") == r.out);
     CHECK(r.out.find("| technique") != std::string::npos);

@@ -73,6 +73,7 @@ TechniqueRender TechniqueRenderer::render(int spp, uint64_t seed, double time_li
     r.counters = result.counters;
     r.mean_spp = double(result.counters.camera_rays) / double(r.image.pixel_count());
     r.complete = result.complete;
+    r.sample_counts = std::move(result.sample_counts);
     return r;
 }
 
@@ -121,6 +122,7 @@ EqualTimeResult render_equal_time(const TechniqueRenderer& renderer, const Image
                                   std::ostream& log) {
     EqualTimeResult result;
     result.technique = renderer.technique();
+    result.adaptive = renderer.adaptive();
     const std::string what = "equal time: " + result.technique.name;
     // Samples per second: from the sweep's longest render, else measured.
     double spp_per_second = 0;
@@ -149,6 +151,7 @@ EqualTimeResult render_equal_time(const TechniqueRenderer& renderer, const Image
             best_miss = miss;
             result.row = row;
             result.image = std::move(r.image);
+            result.sample_counts = std::move(r.sample_counts);
         }
         if (miss <= 0.25) break;
         spp = int(

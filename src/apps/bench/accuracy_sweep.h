@@ -41,6 +41,7 @@ struct TechniqueRender {
     RayCounters counters;  ///< rays, tests
     double mean_spp = 0;   ///< camera rays per pixel (below the -s value for adaptive sampling)
     bool complete = true;  ///< false: cut off by the time limit
+    std::vector<uint32_t> sample_counts;  ///< camera rays per pixel, row-major
 };
 
 /// A technique ready to render: its settings, accelerator and integrator,
@@ -55,6 +56,7 @@ class TechniqueRenderer {
 
     const Technique& technique() const { return technique_; }
     IntegratorKind integrator() const { return integrator_->kind(); }
+    bool adaptive() const { return config_.settings.adaptive; }
     double build_seconds() const { return build_seconds_; }
 
   private:
@@ -104,7 +106,9 @@ struct EqualTimeResult {
     Technique technique;
     AccuracyRow row;
     Image image;
-    bool finished = true;  ///< false: 2 spp did not finish in twice the time
+    std::vector<uint32_t> sample_counts;  ///< camera rays per pixel, row-major
+    bool adaptive = false;                ///< the technique samples adaptively (-a)
+    bool finished = true;                 ///< false: 2 spp did not finish in twice the time
 };
 
 /// One render that takes about `seconds`: the spp is predicted from the

@@ -18,8 +18,10 @@
 #include "apps/bench/bench_command.h"
 #include "apps/bench/bench_util.h"
 #include "core/error.h"
+#include "image/colormap.h"
 #include "image/image_io.h"
 #include "render/integrator.h"
+#include "render/sample_rate_image.h"
 #include "scene/effects.h"
 #include "scene/scene.h"
 #include "scene/scene_loader.h"
@@ -57,7 +59,10 @@ const char* const kHelp = R"(bench accuracy: what accuracy costs in time, for on
 
 Writes DIR/NAME_accuracy.md (also printed), NAME_accuracy.json,
 NAME_accuracy.png (sqrt(relMSE) against seconds, log-log), NAME_reference.png,
-and with --equal-time NAME_equal_time.png and NAME_equal_time_TECHNIQUE.png.
+and with --equal-time NAME_equal_time.png (all side by side), and per technique
+NAME_equal_time_TECHNIQUE.png, its heat map NAME_equal_time_TECHNIQUE_error.png
+(per-pixel relMSE, 1e-4 to 1, viridis) and, for adaptive sampling, its
+sample-rate image NAME_equal_time_TECHNIQUE_rate.png.
 Efficiency is 1 / (relMSE x seconds). Progress lines go to stderr.
 )";
 
@@ -233,8 +238,17 @@ int run_accuracy(const std::vector<std::string>& args) {
     if (o.equal_time > 0) {
         write_png(equal_time_composite(report), prefix + "_equal_time.png");
         written.push_back(prefix + "_equal_time.png");
-        for (const EqualTimeResult& e : report.equal_time_results)
-            if (e.finished) write_png(e.image, prefix + "_equal_time_" + e.technique.name + ".png");
+        // Each render, its error heat map and, for adaptive sampling, its sample rates.
+        for (const EqualTimeResult& e : report.equal_time_results) {
+            if (!e.finished) continue;
+            const std::string base = prefix + "_equal_time_" + e.technique.name;
+            write_png(e.image, base + ".png");
+            write_png(error_heatmap(e.image, reference.image), base + "_error.png");
+            if (e.adaptive)
+                write_png(
+                    make_sample_rate_image(e.sample_counts, scene.film_width, scene.film_height),
+                    base + "_rate.png");
+        }
     }
     std::cout << markdown;
     for (const std::string& path : written)
