@@ -86,6 +86,11 @@ std::string accuracy_markdown(const AccuracyReport& r) {
        << "(aliased; left out of the ratios).\n";
 
     if (!r.sweeps.empty()) {
+        md << "\nThe longest render of each technique:\n\n";
+        Table summary(kHeader, 2);
+        for (const SweepResult& s : r.sweeps)
+            if (!s.rows.empty()) summary.add(row_cells(s.technique.name, s.rows.back()));
+        md << summary.markdown();
         md << "\nEach technique at 1, 2, 4, ... spp within a budget of " << fixed(r.budget, 1)
            << " s of renders:\n\n";
         Table t(kHeader, 2);
