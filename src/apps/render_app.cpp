@@ -164,7 +164,8 @@ int run(const std::vector<std::string>& args, const std::string& program, StageS
     check_writable(options.bvh_depth_image, "--bvh-depth-image");
     seconds.load = timer.seconds();
 
-    Stages stages = make_stages(options.student);
+    Stages stages = make_stages(options.student, options.triangle_test == "watertight" ? TriangleTest::watertight
+                                                                                      : TriangleTest::moller);
     Effects effects = analyze_effects(scene, options.render);
     std::string reason;
     IntegratorKind kind = choose_integrator(scene, effects, options.render, &reason);

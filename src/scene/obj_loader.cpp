@@ -7,6 +7,7 @@
 #include <cstring>
 #include <fstream>
 #include <map>
+#include <sstream>
 
 #include "core/error.h"
 #include "core/files.h"
@@ -14,6 +15,27 @@
 
 namespace pt {
 namespace {
+
+/// tinyobjloader reads a coordinate it cannot parse ("nan", "1.2.3") as 0
+/// without a word; a mesh with a silently moved vertex is worse than an
+/// error, so every number on v, vn and vt lines is checked first.
+void check_vertex_numbers(const std::string& path, const std::string& where) {
+    std::ifstream in(path);
+    std::string line;
+    for (int number = 1; std::getline(in, line); ++number) {
+        std::istringstream fields(line);
+        std::string keyword, token;
+        fields >> keyword;
+        if (keyword != "v" && keyword != "vn" && keyword != "vt") continue;
+        while (fields >> token) {
+            char* end = nullptr;
+            double value = std::strtod(token.c_str(), &end);
+            if (*end != '\0' || !std::isfinite(value))
+                throw InputError(where + ": line " + std::to_string(number) + ": '" + token +
+                                 "' is not a finite number (in a '" + keyword + "' line)");
+        }
+    }
+}
 
 std::string base_name(const std::string& path) {
     size_t slash = path.find_last_of('/');
@@ -53,6 +75,7 @@ MeshData read_obj(Scene& scene, const std::string& path, const ObjLoadOptions& o
     std::vector<tinyobj::shape_t> shapes;
     std::vector<tinyobj::material_t> materials;
     std::string warn, err;
+    check_vertex_numbers(path, where);
     bool ok = tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, path.c_str(),
                                (directory_of(path).empty() ? std::string("./") : directory_of(path)).c_str(), /*triangulate=*/true);
     if (!ok) throw InputError(where + ": not a readable OBJ file: " + (err.empty() ? warn : err));

@@ -6,11 +6,10 @@
 //     prepare(ray)                 per-ray setup (e.g. a watertight test's shear)
 //     intersect(slot, ray, q, hit) t, b1, b2 of a hit within [t_min, t_max]
 //     finish(slot, ray, hit)       the rest of the Hit (the normal), once per ray
-// Two testers exist: InlineMollerTrumbore (the reference triangle routine,
-// inlined on precomputed edges) and StageRoutines (the intersect stage's
-// function pointers, e.g. student code). A second inline triangle test,
-// such as Woop et al.'s watertight one, is one more tester class and one
-// more line in make_reference_bvh.
+// Three testers exist: InlineMollerTrumbore (the reference triangle
+// routine, inlined on precomputed edges), InlineWatertight (Woop et al.'s
+// watertight test, `--triangle watertight`) and StageRoutines (the
+// intersect stage's function pointers, e.g. student code).
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
@@ -21,6 +20,7 @@
 #include "stages/bvh.h"
 #include "stages/flat_bvh.h"
 #include "stages/stages.h"
+#include "stages/watertight.h"
 
 namespace pt {
 namespace {
@@ -128,22 +128,14 @@ inline bool slab_test(const FlatBvhNode& node, const SlabRay& r, float t_max, fl
 // ---------------------------------------------------------------------------
 // Primitive testers
 
-/// The reference triangle routine (Moller-Trumbore, stages/intersect.cpp)
-/// on triangles stored as (p0, e1, e2) in leaf order: the same operations in
-/// the same order, so the same bits, without the call and without fetching
-/// vertices through the scene's index arrays. Spheres, and triangles whose
-/// normal the reference could not normalise, go through the stage's routines.
-class InlineMollerTrumbore {
+/// What the inlined testers share: the slot-to-primitive order, the slots
+/// that must go through the stage's routines (spheres, and triangles whose
+/// normal the reference could not normalise, which depends on the hit
+/// point), and the shading normal exactly as the reference computes it.
+class InlineTriangleSlots {
   public:
-    struct RayData {};  ///< Moller-Trumbore needs no per-ray setup
-
-    InlineMollerTrumbore(const Scene& scene, const IntersectStage& stage,
-                         const std::vector<uint32_t>& order)
-        : scene_(scene),
-          stage_(stage),
-          order_(order),
-          triangles_(order.size()),
-          generic_(order.size(), 0) {
+    InlineTriangleSlots(const Scene& scene, const IntersectStage& stage, const std::vector<uint32_t>& order)
+        : scene_(scene), stage_(stage), order_(order), generic_(order.size(), 0) {
         for (size_t slot = 0; slot < order.size(); ++slot) {
             uint32_t prim = order[slot];
             if (scene.is_sphere(prim)) {
@@ -151,26 +143,61 @@ class InlineMollerTrumbore {
                 continue;
             }
             Triangle tri = scene.triangle(prim);
-            TriangleData& d = triangles_[slot];
-            d.p0 = tri.p0;
-            d.e1 = tri.p1 - tri.p0;
-            d.e2 = tri.p2 - tri.p0;
-            // The reference drops a hit whose geometric normal is not finite
-            // (its area underflowed) unless the vertex normals rescue it,
-            // which depends on the hit point: leave those to the routine.
-            Vec3 ng = cross(d.e1, d.e2);
+            Vec3 ng = cross(tri.p1 - tri.p0, tri.p2 - tri.p0);
             if (!(ng / ng.norm()).is_finite()) generic_[slot] = 1;
+        }
+    }
+
+  protected:
+    bool is_generic(uint32_t slot) const { return generic_[slot] != 0; }
+    bool intersect_generic(uint32_t slot, const Ray& ray, Hit& hit) const {
+        std::optional<Hit> h = intersect_primitive(scene_, stage_, order_[slot], ray);
+        if (h) hit = *h;
+        return h.has_value();
+    }
+    /// hit.n from the unnormalised geometric normal and the vertex normals.
+    void shading_normal(uint32_t slot, const Vec3& ng, Hit& hit) const {
+        hit.n = ng / ng.norm();
+        const TriangleRecord& r = scene_.triangles[order_[slot]];
+        if (r.n[0] != kNoIndex) {
+            double b1 = hit.b1, b2 = hit.b2;
+            Vec3 n = (1.0 - b1 - b2) * scene_.normals[r.n[0]] + b1 * scene_.normals[r.n[1]] +
+                     b2 * scene_.normals[r.n[2]];
+            double len = n.norm();
+            if (len > 0 && std::isfinite(len)) hit.n = n / len;
+        }
+    }
+    uint64_t slot_bytes() const { return generic_.size(); }
+
+    const Scene& scene_;
+    IntersectStage stage_;
+    const std::vector<uint32_t>& order_;  ///< primitive id of each slot (FlatBvh::primitives)
+
+  private:
+    std::vector<uint8_t> generic_;  ///< 1: test the slot through the stage's routines
+};
+
+/// The reference triangle routine (Moller-Trumbore, stages/intersect.cpp)
+/// on triangles stored as (p0, e1, e2) in leaf order: the same operations in
+/// the same order, so the same bits, without the call and without fetching
+/// vertices through the scene's index arrays.
+class InlineMollerTrumbore : public InlineTriangleSlots {
+  public:
+    struct RayData {};  ///< Moller-Trumbore needs no per-ray setup
+
+    InlineMollerTrumbore(const Scene& scene, const IntersectStage& stage, const std::vector<uint32_t>& order)
+        : InlineTriangleSlots(scene, stage, order), triangles_(order.size()) {
+        for (size_t slot = 0; slot < order.size(); ++slot) {
+            if (scene.is_sphere(order[slot])) continue;
+            Triangle tri = scene.triangle(order[slot]);
+            triangles_[slot] = {tri.p0, tri.p1 - tri.p0, tri.p2 - tri.p0};
         }
     }
 
     RayData prepare(const Ray&) const { return {}; }
 
     bool intersect(uint32_t slot, const Ray& ray, const RayData&, Hit& hit) const {
-        if (generic_[slot]) {
-            std::optional<Hit> h = intersect_primitive(scene_, stage_, order_[slot], ray);
-            if (h) hit = *h;
-            return h.has_value();
-        }
+        if (is_generic(slot)) return intersect_generic(slot, ray, hit);
         // Exactly reference::intersect_triangle's arithmetic; tests/bvh
         // checks that t, b1 and b2 agree to the last bit.
         const TriangleData& tri = triangles_[slot];
@@ -194,21 +221,11 @@ class InlineMollerTrumbore {
 
     /// The shading normal, as reference::intersect_triangle computes it.
     void finish(uint32_t slot, const Ray&, Hit& hit) const {
-        if (generic_[slot]) return;  // the routine filled in everything
-        const TriangleData& d = triangles_[slot];
-        Vec3 ng = cross(d.e1, d.e2);
-        hit.n = ng / ng.norm();
-        const TriangleRecord& r = scene_.triangles[order_[slot]];
-        if (r.n[0] != kNoIndex) {
-            double b1 = hit.b1, b2 = hit.b2;
-            Vec3 n = (1.0 - b1 - b2) * scene_.normals[r.n[0]] + b1 * scene_.normals[r.n[1]] +
-                     b2 * scene_.normals[r.n[2]];
-            double len = n.norm();
-            if (len > 0 && std::isfinite(len)) hit.n = n / len;
-        }
+        if (is_generic(slot)) return;  // the routine filled in everything
+        shading_normal(slot, cross(triangles_[slot].e1, triangles_[slot].e2), hit);
     }
 
-    uint64_t bytes() const { return triangles_.size() * sizeof(TriangleData) + generic_.size(); }
+    uint64_t bytes() const { return triangles_.size() * sizeof(TriangleData) + slot_bytes(); }
 
   private:
     struct TriangleData {
@@ -216,11 +233,45 @@ class InlineMollerTrumbore {
         Vec3 e1;  ///< p1 - p0
         Vec3 e2;  ///< p2 - p0
     };
-    const Scene& scene_;
-    IntersectStage stage_;
-    const std::vector<uint32_t>& order_;   ///< primitive id of each slot (FlatBvh::primitives)
     std::vector<TriangleData> triangles_;  ///< per slot; unused for generic slots
-    std::vector<uint8_t> generic_;         ///< 1: test the slot through the stage's routines
+};
+
+/// The watertight test (stages/watertight.h, `--triangle watertight`) on
+/// triangles stored as corners in leaf order; the shear is set up once per ray.
+class InlineWatertight : public InlineTriangleSlots {
+  public:
+    using RayData = WatertightRay;
+
+    InlineWatertight(const Scene& scene, const IntersectStage& stage, const std::vector<uint32_t>& order)
+        : InlineTriangleSlots(scene, stage, order), triangles_(order.size()) {
+        for (size_t slot = 0; slot < order.size(); ++slot) {
+            if (scene.is_sphere(order[slot])) continue;
+            Triangle tri = scene.triangle(order[slot]);
+            triangles_[slot] = {tri.p0, tri.p1, tri.p2};
+        }
+    }
+
+    RayData prepare(const Ray& ray) const { return prepare_watertight(ray); }
+
+    bool intersect(uint32_t slot, const Ray& ray, const RayData& w, Hit& hit) const {
+        if (is_generic(slot)) return intersect_generic(slot, ray, hit);
+        const TriangleData& tri = triangles_[slot];
+        return watertight_hit(tri.p0, tri.p1, tri.p2, ray, w, hit.t, hit.b1, hit.b2);
+    }
+
+    void finish(uint32_t slot, const Ray&, Hit& hit) const {
+        if (is_generic(slot)) return;
+        const TriangleData& tri = triangles_[slot];
+        shading_normal(slot, cross(tri.p1 - tri.p0, tri.p2 - tri.p0), hit);
+    }
+
+    uint64_t bytes() const { return triangles_.size() * sizeof(TriangleData) + slot_bytes(); }
+
+  private:
+    struct TriangleData {
+        Vec3 p0, p1, p2;  ///< corners
+    };
+    std::vector<TriangleData> triangles_;  ///< per slot; unused for generic slots
 };
 
 /// Every primitive through the intersect stage's function pointers (the
@@ -449,6 +500,8 @@ std::unique_ptr<Accelerator> make_reference_bvh(const Scene& scene, const Inters
     // with student (or any other) triangle code, call through the table.
     if (stage.intersect_triangle == &reference::intersect_triangle)
         return std::make_unique<ReferenceBvh<InlineMollerTrumbore>>(scene, stage, std::move(bvh));
+    if (stage.intersect_triangle == &reference::intersect_triangle_watertight)
+        return std::make_unique<ReferenceBvh<InlineWatertight>>(scene, stage, std::move(bvh));
     return std::make_unique<ReferenceBvh<StageRoutines>>(scene, stage, std::move(bvh));
 }
 

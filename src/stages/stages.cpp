@@ -15,7 +15,7 @@ std::unique_ptr<Accelerator> build_student_bvh(const Scene& scene, const Interse
 
 }  // namespace
 
-Stages make_stages(StageSet student) {
+Stages make_stages(StageSet student, TriangleTest triangle_test) {
     Stages s;
     s.student = student;
     if (student.contains(Stage::camera)) {
@@ -26,7 +26,9 @@ Stages make_stages(StageSet student) {
     if (student.contains(Stage::intersect)) {
         s.intersect = {student::intersect_triangle, student::intersect_sphere};
     } else {
-        s.intersect = {reference::intersect_triangle, reference::intersect_sphere};
+        s.intersect = {triangle_test == TriangleTest::watertight ? reference::intersect_triangle_watertight
+                                                                 : reference::intersect_triangle,
+                       reference::intersect_sphere};
     }
     s.bvh = {student.contains(Stage::bvh) ? build_student_bvh : make_reference_bvh};
     s.adaptive = {student.contains(Stage::adaptive) ? student::has_converged : reference::has_converged};

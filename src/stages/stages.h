@@ -48,8 +48,13 @@ struct Stages {
     bool is_student(Stage s) const { return student.contains(s); }
 };
 
-/// The function tables with student code for the stages in `student`.
-Stages make_stages(StageSet student);
+/// The reference triangle test (`--triangle`): Moller-Trumbore, or the
+/// watertight test of Woop et al. (stages/intersect_watertight.cpp).
+enum class TriangleTest { moller, watertight };
+
+/// The function tables with student code for the stages in `student`; the
+/// reference intersect stage uses `triangle_test` for triangles.
+Stages make_stages(StageSet student, TriangleTest triangle_test = TriangleTest::moller);
 
 /// The scene's accelerator: the linear scan for `--accel none`, else the bvh stage's.
 std::unique_ptr<Accelerator> build_accelerator(const Scene& scene, const Stages& stages,

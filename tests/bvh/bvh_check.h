@@ -31,8 +31,11 @@ struct Expected {
     std::vector<bool> occluded;
 };
 
-inline Expected linear_answers(const Scene& scene, const std::vector<Ray>& rays) {
-    auto linear = make_linear_scan(scene, kReference);
+inline const IntersectStage kWatertight{reference::intersect_triangle_watertight, reference::intersect_sphere};
+
+inline Expected linear_answers(const Scene& scene, const std::vector<Ray>& rays,
+                               const IntersectStage& stage = kReference) {
+    auto linear = make_linear_scan(scene, stage);
     Expected e;
     for (const Ray& r : rays) {
         e.hits.push_back(linear->intersect(r));

@@ -29,6 +29,10 @@ void check_scene(const Scene& scene, int ray_count) {
     }
     // The other builds on a fifth of the rays: they share the traversal.
     rays.resize(rays.size() / 5);
+    {
+        INFO("reference BVH, inlined watertight triangle test (--triangle watertight)");
+        check_agrees(*make_reference_bvh(scene, kWatertight, settings), rays, linear_answers(scene, rays, kWatertight));
+    }
     for (const char* split : {"median", "middle"}) {
         for (int max_leaf : {1, 8}) {
             settings.split = split;
