@@ -126,3 +126,12 @@ TEST_CASE("a technique whose first render exceeds the budget is reported as not 
     CHECK(j["techniques"][0]["finished"] == false);
     CHECK(j["techniques"][0]["rows"].empty());
 }
+
+TEST_CASE("depth caps are skipped, with a note, unless the baseline is the path tracer") {
+    const std::string dir = test::scratch_dir("bench_accuracy_skip");
+    test::CommandResult r = quick_run(dir, "--budget 0.05 -m 1 --techniques light,depth-2");
+    REQUIRE(r.exit_code == 0);
+    CHECK(r.err.find("skipping depth-2") != std::string::npos);
+    nlohmann::json j = nlohmann::json::parse(test::read_file(dir + "/cbox_accuracy.json"));
+    CHECK(j["techniques"].size() == 1);
+}

@@ -38,13 +38,17 @@ std::vector<std::string> row_cells(const std::string& name, const AccuracyRow& r
 const std::vector<std::string> kHeader = {"technique", "spp",    "seconds",   "Mrays",
                                           "RMSE",      "relMSE", "efficiency"};
 
-/// A technique's colour: by its place in the full table, so that a
+/// A technique's colour: the depth caps on a ramp from dark (depth-1) to
+/// light (depth-8); the others by their place in the full table, so that a
 /// technique keeps its colour whichever subset is run.
 Color technique_color(const std::string& name) {
-    const std::vector<Technique>& all = all_techniques();
-    for (size_t i = 0; i < all.size(); ++i)
-        if (all[i].name == name) return plot_color(i);
-    return plot_color(all.size());
+    if (name.rfind("depth-", 0) == 0) return viridis_srgb((std::stoi(name.substr(6)) - 1) / 8.0);
+    size_t i = 0;
+    for (const Technique& t : all_techniques()) {
+        if (t.name == name) return plot_color(i);
+        if (t.name.rfind("depth-", 0) != 0) ++i;
+    }
+    return plot_color(i);
 }
 
 nlohmann::json row_json(const AccuracyRow& r) {

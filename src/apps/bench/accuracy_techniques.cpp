@@ -13,16 +13,22 @@ bool textbook_has_converged(const PixelStatistics& stats, double max_tolerance) 
     return 1.96 * std::sqrt(variance / n) <= max_tolerance * mu;
 }
 
+/// -m D: a hard cap of D bounces.
+template <int D>
+void cap_depth(TechniqueConfig& c) {
+    c.settings.max_depth = D;
+}
+
 const std::vector<Technique>& all_techniques() {
-    // Part 4 (path tracing) will add, each one entry:
-    //   {"rr-off", "path tracing without Russian roulette", "light", ...},
-    //   {"depth-1" ... "depth-8", "-m 1" ... "-m 8", "light", ...}.
+    // Pending Part 4's RenderSettings::russian_roulette, one more entry:
+    //   {"rr-off", "path tracing without Russian roulette (--rr-depth off)", "light",
+    //    [](TechniqueConfig& c) { c.settings.russian_roulette = false; }, true},
     static const std::vector<Technique> techniques = {
-        {"hemisphere", "direct light: uniform hemisphere sampling (-H)", "light",
+        {"hemisphere", "light at each vertex by uniform hemisphere sampling (-H)", "light",
          [](TechniqueConfig& c) { c.settings.direct = DirectStrategy::hemisphere; }},
-        {"light", "direct light: light sampling; uniform spp; BVH (the baseline)", "",
+        {"light", "light sampling at each vertex; uniform spp; BVH (the baseline)", "",
          [](TechniqueConfig&) {}},
-        {"mis", "direct light: MIS, light and BSDF samples (--direct mis)", "light",
+        {"mis", "MIS of light and BSDF samples at each vertex (--direct mis)", "light",
          [](TechniqueConfig& c) { c.settings.direct = DirectStrategy::mis; }},
         {"adaptive", "adaptive sampling (-a), -s is the maximum", "light",
          [](TechniqueConfig& c) { c.settings.adaptive = true; }},
@@ -34,6 +40,15 @@ const std::vector<Technique>& all_techniques() {
          }},
         {"linear-scan", "no BVH: every ray tests every primitive (--accel none)", "light",
          [](TechniqueConfig& c) { c.accelerator.use_bvh = false; }},
+        {"depth-1", "-m 1: at most 1 bounce (biased against the baseline's -m)", "light",
+         cap_depth<1>, true},
+        {"depth-2", "-m 2: at most 2 bounces", "light", cap_depth<2>, true},
+        {"depth-3", "-m 3: at most 3 bounces", "light", cap_depth<3>, true},
+        {"depth-4", "-m 4: at most 4 bounces", "light", cap_depth<4>, true},
+        {"depth-5", "-m 5: at most 5 bounces", "light", cap_depth<5>, true},
+        {"depth-6", "-m 6: at most 6 bounces", "light", cap_depth<6>, true},
+        {"depth-7", "-m 7: at most 7 bounces", "light", cap_depth<7>, true},
+        {"depth-8", "-m 8: at most 8 bounces", "light", cap_depth<8>, true},
     };
     return techniques;
 }

@@ -29,6 +29,7 @@ struct Technique {
     std::string what;      ///< one line for the table: what it changes
     std::string baseline;  ///< the technique its efficiency is compared with; "" for none
     void (*apply)(TechniqueConfig& config);
+    bool path_only = false;  ///< meaningful only when the baseline is the path tracer (-m >= 2)
 };
 
 /// Every technique, in the order of the table.

@@ -43,10 +43,12 @@ const char* const kHelp = R"(bench accuracy: what accuracy costs in time, for on
                       write the images side by side with their error
                       (alone, without --budget: only the equal-time renders)
   --techniques LIST   all, or some of: hemisphere, light, mis, adaptive,
-                      adaptive-noguard, linear-scan                     [all]
+                      adaptive-noguard, linear-scan, and for the path
+                      tracer (-m 2 or more) depth-1 ... depth-8         [all]
   -r W H              resolution        [the scene's film, longer side 256]
   -t N                threads                    [all hardware threads]
   -l N, -m N          samples per area light, maximum depth   [1, 1]
+                      (-m 100000: no cap; Russian roulette ends the paths)
   -a N TOL            adaptive sampling's batch and tolerance [32 0.05]
   --seed N            seed of every render                    [1]
   --max-spp N         the sweep stops at N spp at the latest  [4096]
@@ -210,7 +212,20 @@ int run_accuracy(const std::vector<std::string>& args) {
     const std::string prefix = o.out_dir + "/" + scene.name;
     write_png(reference.image, prefix + "_reference.png");
 
+    const bool path_baseline = report.integrator == to_string(IntegratorKind::path);
     for (const Technique& t : o.techniques) {
+        // Roulette and depth caps mean something only to the path tracer, and
+        // a cap only below the baseline's -m (the reference's depth).
+        if (t.path_only && !path_baseline) {
+            std::cerr << "bench accuracy: skipping " << t.name << ": it needs the path integrator "
+                      << "as the baseline (-m 2 or more), not " << report.integrator << "\n";
+            continue;
+        }
+        if (t.name.rfind("depth-", 0) == 0 && std::stoi(t.name.substr(6)) >= o.baseline.max_depth) {
+            std::cerr << "bench accuracy: skipping " << t.name << ": not below the baseline's -m "
+                      << o.baseline.max_depth << "\n";
+            continue;
+        }
         TechniqueRenderer renderer(scene, o.baseline, t, o.threads);
         const SweepResult* swept = nullptr;
         if (o.run_sweep) {
