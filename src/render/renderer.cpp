@@ -27,6 +27,7 @@ RenderResult render_image(const RenderContext& context, const RenderOptions& opt
 
     std::atomic<int> next_tile{0};
     std::atomic<bool> abort{false};
+    std::atomic<bool> out_of_time{false};
     std::exception_ptr failure;
     std::mutex merge_mutex;
     Timer timer;
@@ -38,8 +39,13 @@ RenderResult render_image(const RenderContext& context, const RenderOptions& opt
             for (int tile = next_tile++; tile < tile_count && !abort; tile = next_tile++) {
                 int x0 = area.x + (tile % tiles_x) * kTile, y0 = area.y + (tile / tiles_x) * kTile;
                 int x1 = std::min(x0 + kTile, area.x + area.width), y1 = std::min(y0 + kTile, area.y + area.height);
-                for (int y = y0; y < y1; ++y) {
-                    for (int x = x0; x < x1; ++x) {
+                for (int y = y0; y < y1 && !abort; ++y) {
+                    for (int x = x0; x < x1 && !abort; ++x) {
+                        // A time-limited render (bench) gives up between pixels.
+                        if (options.time_limit > 0 && timer.seconds() > options.time_limit) {
+                            out_of_time = abort = true;
+                            break;
+                        }
                         PixelResult pixel = context.stages.camera.raytrace_pixel(context, x, y);
                         // The last line of defence: whatever a stage returns, the
                         // film never stores NaN or Inf.
@@ -71,6 +77,7 @@ RenderResult render_image(const RenderContext& context, const RenderOptions& opt
     for (std::thread& t : pool) t.join();
     result.seconds = timer.seconds();
     if (failure) std::rethrow_exception(failure);
+    result.complete = !out_of_time;
     progress.finish();
     return result;
 }

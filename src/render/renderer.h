@@ -24,6 +24,7 @@ struct RenderOptions {
     int threads = 1;                  ///< worker threads (-t)
     bool show_progress = false;       ///< progress bar on stderr
     std::optional<PixelRect> cell;    ///< -p: render only these pixels (others stay black)
+    double time_limit = 0;            ///< seconds; > 0: stop starting pixels after this long (bench's budget)
 };
 
 struct RenderResult {
@@ -31,10 +32,13 @@ struct RenderResult {
     std::vector<uint32_t> sample_counts;  ///< camera rays per pixel, row-major (0 outside the cell)
     RayCounters counters;                ///< summed over all threads
     double seconds = 0;                  ///< wall-clock time of the render
+    bool complete = true;                ///< false: stopped by options.time_limit, some pixels black
 };
 
 /// Renders every pixel of the film (or of options.cell). A stage that throws
 /// (e.g. NotImplemented) stops all threads; the first exception is rethrown.
+/// With options.time_limit, the threads stop once that many seconds have
+/// passed (checked before each pixel) and result.complete is false.
 RenderResult render_image(const RenderContext& context, const RenderOptions& options);
 
 }  // namespace pt

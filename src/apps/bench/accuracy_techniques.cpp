@@ -1,0 +1,88 @@
+#include "apps/bench/accuracy_techniques.h"
+
+#include <cmath>
+
+#include "core/error.h"
+
+namespace pt::bench {
+
+bool textbook_has_converged(const PixelStatistics& stats, double max_tolerance) {
+    if (stats.n < 2) return false;
+    const double n = stats.n, mu = stats.s1 / n;
+    const double variance = std::max(0.0, (stats.s2 - stats.s1 * stats.s1 / n) / (n - 1));
+    return 1.96 * std::sqrt(variance / n) <= max_tolerance * mu;
+}
+
+/// -m D: a hard cap of D bounces.
+template <int D>
+void cap_depth(TechniqueConfig& c) {
+    c.settings.max_depth = D;
+}
+
+const std::vector<Technique>& all_techniques() {
+    // Pending Part 4's RenderSettings::russian_roulette, one more entry:
+    //   {"rr-off", "path tracing without Russian roulette (--rr-depth off)", "light",
+    //    [](TechniqueConfig& c) { c.settings.russian_roulette = false; }, true},
+    static const std::vector<Technique> techniques = {
+        {"hemisphere", "light at each vertex by uniform hemisphere sampling (-H)", "light",
+         [](TechniqueConfig& c) { c.settings.direct = DirectStrategy::hemisphere; }},
+        {"light", "light sampling at each vertex; uniform spp; BVH (the baseline)", "",
+         [](TechniqueConfig&) {}},
+        {"mis", "MIS of light and BSDF samples at each vertex (--direct mis)", "light",
+         [](TechniqueConfig& c) { c.settings.direct = DirectStrategy::mis; }},
+        {"adaptive", "adaptive sampling (-a), -s is the maximum", "light",
+         [](TechniqueConfig& c) { c.settings.adaptive = true; }},
+        {"adaptive-noguard", "adaptive sampling without the rare-event guard (CS184's rule)",
+         "adaptive",
+         [](TechniqueConfig& c) {
+             c.settings.adaptive = true;
+             c.stages.adaptive.has_converged = textbook_has_converged;
+         }},
+        {"linear-scan", "no BVH: every ray tests every primitive (--accel none)", "light",
+         [](TechniqueConfig& c) { c.accelerator.use_bvh = false; }},
+        {"depth-1", "-m 1: at most 1 bounce (biased against the baseline's -m)", "light",
+         cap_depth<1>, true},
+        {"depth-2", "-m 2: at most 2 bounces", "light", cap_depth<2>, true},
+        {"depth-3", "-m 3: at most 3 bounces", "light", cap_depth<3>, true},
+        {"depth-4", "-m 4: at most 4 bounces", "light", cap_depth<4>, true},
+        {"depth-5", "-m 5: at most 5 bounces", "light", cap_depth<5>, true},
+        {"depth-6", "-m 6: at most 6 bounces", "light", cap_depth<6>, true},
+        {"depth-7", "-m 7: at most 7 bounces", "light", cap_depth<7>, true},
+        {"depth-8", "-m 8: at most 8 bounces", "light", cap_depth<8>, true},
+    };
+    return techniques;
+}
+
+std::vector<Technique> select_techniques(const std::string& list) {
+    const std::vector<Technique>& all = all_techniques();
+    if (list == "all") return all;
+    std::vector<std::string> names;
+    size_t start = 0;
+    while (start <= list.size()) {
+        size_t comma = list.find(',', start);
+        if (comma == std::string::npos) comma = list.size();
+        names.push_back(list.substr(start, comma - start));
+        start = comma + 1;
+    }
+    std::string known;
+    for (const Technique& t : all)
+        known += (known.empty() ? "" : ", ") + t.name;
+    for (const std::string& name : names) {
+        bool found = false;
+        for (const Technique& t : all)
+            found = found || t.name == name;
+        if (!found)
+            throw InputError("accuracy: --techniques: unknown technique '" + name +
+                             "' (expected all, or some of: " + known + ")");
+    }
+    std::vector<Technique> chosen;
+    for (const Technique& t : all)
+        for (const std::string& name : names)
+            if (t.name == name) {
+                chosen.push_back(t);
+                break;
+            }
+    return chosen;
+}
+
+}  // namespace pt::bench
