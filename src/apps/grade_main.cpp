@@ -10,6 +10,7 @@
 #include <sstream>
 #include <thread>
 
+#include "apps/number_flags.h"
 #include "core/error.h"
 #include "grade/check_registry.h"
 #include "grade/grader.h"
@@ -64,20 +65,6 @@ std::vector<std::string> split(const std::string& list) {
     return out;
 }
 
-long long parse_int(const std::string& flag, const std::string& v, long long lo, long long hi) {
-    size_t used = 0;
-    long long n = 0;
-    try {
-        n = std::stoll(v, &used);
-    } catch (const std::exception&) {
-        used = 0;
-    }
-    if (used != v.size() || v.empty() || n < lo || n > hi)
-        throw InputError(flag + ": expected an integer in [" + std::to_string(lo) + ", " +
-                         std::to_string(hi) + "], got '" + v + "'");
-    return n;
-}
-
 GradeOptions parse(const std::vector<std::string>& args) {
     GradeOptions o;
     for (size_t i = 0; i < args.size(); ++i) {
@@ -95,11 +82,11 @@ GradeOptions parse(const std::vector<std::string>& args) {
         } else if (a == "--out") {
             o.out_dir = value();
         } else if (a == "--seed") {
-            o.seed = uint64_t(parse_int(a, value(), 0, (1ll << 62)));
+            o.seed = uint64_t(parse_whole_number(a, value(), 0, (1ll << 62)));
         } else if (a == "-t") {
-            o.threads = int(parse_int(a, value(), 1, 1024));
+            o.threads = int(parse_whole_number(a, value(), 1, 1024));
         } else if (a == "--timeout") {
-            o.timeout = double(parse_int(a, value(), 0, 86400));
+            o.timeout = double(parse_whole_number(a, value(), 0, 86400));
         } else if (a == "--cache") {
             o.cache_dir = value();
         } else if (a == "--no-cache") {
@@ -110,7 +97,7 @@ GradeOptions parse(const std::vector<std::string>& args) {
             o.assets_dir = value();
         } else if (a == "--part") {
             for (const std::string& p : split(value()))
-                o.parts.push_back(int(parse_int("--part", p, 1, 5)));
+                o.parts.push_back(int(parse_whole_number("--part", p, 1, 5)));
         } else if (a == "--task") {
             o.tasks = split(value());
         } else {

@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/number_flags.h"
 #include "core/error.h"
 #include "image/colormap.h"
 #include "image/image_io.h"
@@ -57,19 +58,6 @@ const char* kUsage =
     "relMSE = mean over pixels and channels of (A - B)^2 / (B^2 + 0.01).\n"
     "Exit codes: 0 within limits, 1 over a limit or a file missing, 2 bad input.\n";
 
-double parse_number(const std::string& flag, const std::string& value) {
-    size_t used = 0;
-    double v = 0;
-    try {
-        v = std::stod(value, &used);
-    } catch (const std::exception&) {
-        used = 0;
-    }
-    if (used != value.size() || !std::isfinite(v) || v < 0)
-        throw InputError(flag + ": expected a non-negative number, got '" + value + "'");
-    return v;
-}
-
 ImgdiffOptions parse(const std::vector<std::string>& args) {
     ImgdiffOptions o;
     for (size_t i = 0; i < args.size(); ++i) {
@@ -87,11 +75,11 @@ ImgdiffOptions parse(const std::vector<std::string>& args) {
         } else if (a == "--heatmap-dir") {
             o.heatmap_dir = value();
         } else if (a == "--max-relmse") {
-            o.max_relmse = parse_number(a, value());
+            o.max_relmse = parse_real_number(a, value(), 0);
         } else if (a == "--max-rmse") {
-            o.max_rmse = parse_number(a, value());
+            o.max_rmse = parse_real_number(a, value(), 0);
         } else if (a == "--threshold") {
-            o.threshold = parse_number(a, value());
+            o.threshold = parse_real_number(a, value(), 0);
         } else if (a.size() > 1 && a[0] == '-') {
             throw InputError("unknown flag '" + a + "' (imgdiff --help lists the flags)");
         } else {

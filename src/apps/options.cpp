@@ -1,47 +1,14 @@
 #include "apps/options.h"
 
-#include <cerrno>
-#include <cmath>
-#include <cstdlib>
 #include <functional>
 #include <sstream>
 #include <thread>
 
+#include "apps/number_flags.h"
 #include "core/error.h"
 
 namespace pt {
 namespace {
-
-// Strict number parsing: the whole argument must be the number.
-long long to_integer(const std::string& flag, const std::string& text, long long lo, long long hi) {
-    errno = 0;
-    char* end = nullptr;
-    long long v = std::strtoll(text.c_str(), &end, 10);
-    if (text.empty() || *end != '\0' || errno == ERANGE || v < lo || v > hi) {
-        std::ostringstream s;
-        s << flag << ": expected a whole number";
-        if (hi == lo) s << " equal to " << lo;
-        else if (hi >= (1ll << 30)) s << " >= " << lo;
-        else s << " in [" << lo << ", " << hi << "]";
-        s << ", got '" << text << "'";
-        throw InputError(s.str());
-    }
-    return v;
-}
-
-double to_real(const std::string& flag, const std::string& text, double lo, double hi, bool open_lo = false) {
-    char* end = nullptr;
-    double v = std::strtod(text.c_str(), &end);
-    bool ok = !text.empty() && *end == '\0' && std::isfinite(v) && (open_lo ? v > lo : v >= lo) && v <= hi;
-    if (!ok) {
-        std::ostringstream s;
-        s << flag << ": expected a number " << (open_lo ? "> " : ">= ") << lo;
-        if (hi < 1e300) s << " and <= " << hi;
-        s << ", got '" << text << "'";
-        throw InputError(s.str());
-    }
-    return v;
-}
 
 std::string one_of(const std::string& flag, const std::string& text, std::initializer_list<const char*> choices) {
     std::string list;
@@ -65,32 +32,32 @@ std::vector<FlagSpec> flag_table() {
     using V = const std::vector<std::string>&;
     using S = const std::string&;
     return {
-        {{"-s"}, 1, [](Options& o, S f, V v) { o.render.spp = int(to_integer(f, v[0], 1, kMax)); }},
+        {{"-s"}, 1, [](Options& o, S f, V v) { o.render.spp = int(parse_whole_number(f, v[0], 1, kMax)); }},
         {{"-a"}, 2, [](Options& o, S f, V v) {
              o.render.adaptive = true;
-             o.render.samples_per_batch = int(to_integer(f + " (samples per batch)", v[0], 1, kMax));
-             o.render.max_tolerance = to_real(f + " (max tolerance)", v[1], 0, 1e300, true);
+             o.render.samples_per_batch = int(parse_whole_number(f + " (samples per batch)", v[0], 1, kMax));
+             o.render.max_tolerance = parse_real_number(f + " (max tolerance)", v[1], 0, 1e300, true);
          }},
-        {{"-l"}, 1, [](Options& o, S f, V v) { o.render.light_samples = int(to_integer(f, v[0], 1, kMax)); }},
-        {{"-t"}, 1, [](Options& o, S f, V v) { o.threads = int(to_integer(f, v[0], 1, 4096)); }},
-        {{"-m"}, 1, [](Options& o, S f, V v) { o.render.max_depth = int(to_integer(f, v[0], 0, 100000)); }},
-        {{"-o"}, 1, [](Options& o, S f, V v) { o.render.accumulate_bounces = to_integer(f, v[0], 0, 1) == 1; }},
+        {{"-l"}, 1, [](Options& o, S f, V v) { o.render.light_samples = int(parse_whole_number(f, v[0], 1, kMax)); }},
+        {{"-t"}, 1, [](Options& o, S f, V v) { o.threads = int(parse_whole_number(f, v[0], 1, 4096)); }},
+        {{"-m"}, 1, [](Options& o, S f, V v) { o.render.max_depth = int(parse_whole_number(f, v[0], 0, 100000)); }},
+        {{"-o"}, 1, [](Options& o, S f, V v) { o.render.accumulate_bounces = parse_whole_number(f, v[0], 0, 1) == 1; }},
         {{"-e"}, 1, [](Options& o, S, V v) { o.environment_map = v[0]; }},
         {{"-f"}, 1, [](Options& o, S, V v) { o.output = v[0]; }},
         {{"-r"}, 2, [](Options& o, S f, V v) {
-             o.resolution = {int(to_integer(f + " (width)", v[0], 1, 1 << 15)),
-                             int(to_integer(f + " (height)", v[1], 1, 1 << 15))};
+             o.resolution = {int(parse_whole_number(f + " (width)", v[0], 1, 1 << 15)),
+                             int(parse_whole_number(f + " (height)", v[1], 1, 1 << 15))};
              if (double(o.resolution->first) * o.resolution->second > double(1 << 26))
                  throw InputError(f + ": width * height must be at most 67108864 pixels");
          }},
         {{"-p"}, 4, [](Options& o, S f, V v) {
-             o.cell = PixelRect{int(to_integer(f + " (x)", v[0], 0, 1 << 15)), int(to_integer(f + " (y)", v[1], 0, 1 << 15)),
-                                int(to_integer(f + " (dx)", v[2], 1, 1 << 15)), int(to_integer(f + " (dy)", v[3], 1, 1 << 15))};
+             o.cell = PixelRect{int(parse_whole_number(f + " (x)", v[0], 0, 1 << 15)), int(parse_whole_number(f + " (y)", v[1], 0, 1 << 15)),
+                                int(parse_whole_number(f + " (dx)", v[2], 1, 1 << 15)), int(parse_whole_number(f + " (dy)", v[3], 1, 1 << 15))};
          }},
         {{"-H"}, 0, [](Options& o, S, V) { o.render.direct = DirectStrategy::hemisphere; }},
-        {{"-b"}, 1, [](Options& o, S f, V v) { o.lens_radius = to_real(f, v[0], 0, 1e300); }},
-        {{"-d"}, 1, [](Options& o, S f, V v) { o.focal_distance = to_real(f, v[0], 0, 1e300, true); }},
-        {{"--seed"}, 1, [](Options& o, S f, V v) { o.render.seed = uint64_t(to_integer(f, v[0], 0, (1ll << 62))); }},
+        {{"-b"}, 1, [](Options& o, S f, V v) { o.lens_radius = parse_real_number(f, v[0], 0, 1e300); }},
+        {{"-d"}, 1, [](Options& o, S f, V v) { o.focal_distance = parse_real_number(f, v[0], 0, 1e300, true); }},
+        {{"--seed"}, 1, [](Options& o, S f, V v) { o.render.seed = uint64_t(parse_whole_number(f, v[0], 0, (1ll << 62))); }},
         {{"--hdr"}, 1, [](Options& o, S f, V v) {
              if (v[0].size() < 4 || v[0].substr(v[0].size() - 4) != ".pfm")
                  throw InputError(f + ": expected a file name ending in .pfm, got '" + v[0] + "'");
@@ -118,17 +85,17 @@ std::vector<FlagSpec> flag_table() {
                  return;
              }
              try {
-                 o.render.rr_depth = int(to_integer(f, v[0], 0, 100000));
+                 o.render.rr_depth = int(parse_whole_number(f, v[0], 0, 100000));
              } catch (const InputError&) {
                  throw InputError(f + ": expected a whole number >= 0 (bounces before Russian "
                                       "roulette starts) or 'off', got '" + v[0] + "'");
              }
              o.render.russian_roulette = true;
          }},
-        {{"--clamp"}, 1, [](Options& o, S f, V v) { o.render.clamp = to_real(f, v[0], 0, 1e300, true); }},
+        {{"--clamp"}, 1, [](Options& o, S f, V v) { o.render.clamp = parse_real_number(f, v[0], 0, 1e300, true); }},
         {{"--triangle"}, 1, [](Options& o, S f, V v) { o.triangle_test = one_of(f, v[0], {"moller", "watertight"}); }},
         {{"--bvh-split"}, 1, [](Options& o, S f, V v) { o.accelerator.split = one_of(f, v[0], {"sah", "median", "middle"}); }},
-        {{"--max-leaf"}, 1, [](Options& o, S f, V v) { o.accelerator.max_leaf = int(to_integer(f, v[0], 1, 255)); }},
+        {{"--max-leaf"}, 1, [](Options& o, S f, V v) { o.accelerator.max_leaf = int(parse_whole_number(f, v[0], 1, 255)); }},
         {{"--bvh-view"}, 1, [](Options& o, S f, V v) {
              for (char c : v[0])
                  if (c != 'L' && c != 'R') throw InputError(f + ": expected a path of L and R steps, got '" + v[0] + "'");

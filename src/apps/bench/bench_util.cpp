@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "apps/number_flags.h"
 #include "core/error.h"
 #include "core/frame.h"
 #include "core/rng.h"
@@ -56,13 +57,7 @@ const std::vector<std::string>& Args::values(const std::string& flag) const {
 }
 
 int parse_int(const std::string& what, const std::string& text, int lo, int hi) {
-    errno = 0;
-    char* end = nullptr;
-    long v = std::strtol(text.c_str(), &end, 10);
-    if (text.empty() || *end != '\0' || errno == ERANGE || v < lo || v > hi)
-        throw InputError(what + ": expected a whole number in [" + std::to_string(lo) + ", " +
-                         std::to_string(hi) + "], got '" + text + "'");
-    return int(v);
+    return int(parse_whole_number(what, text, lo, hi));
 }
 
 int Args::get_int(const std::string& flag, int fallback, int lo, int hi) const {
@@ -72,13 +67,7 @@ int Args::get_int(const std::string& flag, int fallback, int lo, int hi) const {
 
 double Args::get_double(const std::string& flag, double fallback, double lo) const {
     if (!has(flag)) return fallback;
-    std::string text = get(flag, "");
-    char* end = nullptr;
-    double v = std::strtod(text.c_str(), &end);
-    if (text.empty() || *end != '\0' || !std::isfinite(v) || v < lo)
-        throw InputError(command_ + ": " + flag + ": expected a number >= " + fixed(lo, 3) +
-                         ", got '" + text + "'");
-    return v;
+    return parse_real_number(command_ + ": " + flag, get(flag, ""), lo);
 }
 
 // ---------------------------------------------------------------------------
