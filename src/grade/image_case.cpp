@@ -71,7 +71,9 @@ ImageCase parse_image_case(const json& j, const std::string& where) {
                                         "max_mean_spp",
                                         "bias_spp",
                                         "samples_per_batch",
-                                        "max_tolerance"};
+                                        "max_tolerance",
+                                        "russian_roulette",
+                                        "rr_depth"};
     for (auto it = j.begin(); it != j.end(); ++it)
         if (!keys.count(it.key())) throw InputError(where + ": unknown key \"" + it.key() + "\"");
     for (const char* k : {"scene", "integrator", "spp"})
@@ -116,6 +118,20 @@ ImageCase parse_image_case(const json& j, const std::string& where) {
         if (!j["accumulate_bounces"].is_boolean())
             throw InputError(where + ".accumulate_bounces: expected true or false");
         c.settings.accumulate_bounces = j["accumulate_bounces"].get<bool>();
+    }
+    if (j.contains("russian_roulette")) {  // --rr-depth off
+        if (!j["russian_roulette"].is_boolean())
+            throw InputError(where + ".russian_roulette: expected true or false");
+        c.settings.russian_roulette = j["russian_roulette"].get<bool>();
+    }
+    if (j.contains("rr_depth")) {  // --rr-depth N: roulette after N bounces
+        if (!j["rr_depth"].is_number_integer() || j["rr_depth"].get<long long>() < 0 ||
+            j["rr_depth"].get<long long>() > 100000)
+            throw InputError(where + ".rr_depth: expected an integer from 0 to 100000, got " +
+                             j["rr_depth"].dump());
+        if (!c.settings.russian_roulette)
+            throw InputError(where + ".rr_depth: has no effect with \"russian_roulette\": false");
+        c.settings.rr_depth = j["rr_depth"].get<int>();
     }
     if (j.contains("direct")) {
         std::string d = j["direct"].is_string() ? j["direct"].get<std::string>() : "";
@@ -180,6 +196,12 @@ std::string case_fingerprint(const ImageCase& c, const std::string& assets_dir) 
              << s.light_samples << " m" << s.max_depth << " o" << s.accumulate_bounces << " "
              << to_string(s.direct) << " a" << s.adaptive << " " << s.samples_per_batch << " "
              << s.max_tolerance;
+    // Roulette only when it differs from the default (on, --rr-depth 3), so
+    // that the fingerprints, and the caches, of older cases stay valid.
+    if (!s.russian_roulette)
+        settings << " rr-off";
+    else if (s.rr_depth != RenderSettings{}.rr_depth)
+        settings << " rr" << s.rr_depth;
     char hex[17];
     std::snprintf(hex, sizeof hex, "%016llx",
                   (unsigned long long)fnv1a(settings.str(), fnv1a(inputs)));

@@ -9,7 +9,8 @@
 // the bias test of noise_rule.h; default 16 x spp, at most converged_spp, or
 // spp itself when spp = converged_spp, i.e. when there is no noise),
 // "light_samples", "max_depth" (0: emission only), "accumulate_bounces",
-// "direct" (light | hemisphere | mis), "max_mean_spp" (turns adaptive
+// "direct" (light | hemisphere | mis), "russian_roulette" (true; false is
+// --rr-depth off), "rr_depth" (3: bounces before roulette), "max_mean_spp" (turns adaptive
 // sampling on with `spp` as the maximum; the mean number of samples per
 // pixel may not exceed it: adaptive sampling must stop), with
 // "samples_per_batch" (32) and "max_tolerance" (0.05) as -a N TOL.

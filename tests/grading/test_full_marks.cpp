@@ -24,7 +24,8 @@ std::optional<Hit> quadratic(const Sphere& sphere, const Ray& ray, bool far_firs
 
 namespace pt::fixtures {
 bool textbook_has_converged(const PixelStatistics& s, double tol);
-}
+void install_handout_steps_global(Stages& s);
+}  // namespace pt::fixtures
 
 namespace {
 
@@ -94,4 +95,16 @@ TEST_CASE("CS184's textbook has_converged (no rare-event guard) earns full marks
     Stages student = reference_stages();
     student.adaptive.has_converged = fixtures::textbook_has_converged;
     full_marks_on_20_seeds(5, student);
+}
+
+TEST_CASE("a path tracer written from the TODO steps (recursive) passes every Part 4 task") {
+    Stages student = reference_stages();
+    fixtures::install_handout_steps_global(student);
+    for (uint64_t seed = 1; seed <= 3; ++seed) {
+        GradeReport report = grade_all({manifest(4)}, environment(student, seed));
+        for (const TaskResult& t : report.tasks) {
+            INFO("seed " << seed << ", " << t.id << ": " << t.message);
+            CHECK(t.status == TaskStatus::pass);
+        }
+    }
 }

@@ -9,8 +9,11 @@
 #include "core/error.h"
 #include "core/stub_fallback.h"
 #include "grade/check_registry.h"
+#include "grade/image_case.h"
 #include "grading_helpers.h"
+#include "render/integrator.h"
 #include "render/render_context.h"
+#include "scene/scene_loader.h"
 #include "stages/camera.h"
 
 using namespace pt;
@@ -79,6 +82,15 @@ Stages stub_stages() {
                                       Rng&) -> Color {
         throw NotImplemented(3, "6", "one_bounce_radiance");
     };
+    s.global.at_least_one_bounce_radiance = [](const RenderContext&, const Ray&,
+                                               const SurfaceInteraction&, const Color&,
+                                               Rng&) -> Color {
+        throw NotImplemented(4, "1", "at_least_one_bounce_radiance");
+    };
+    s.global.est_radiance_global_illumination = [](const RenderContext&, const Ray&,
+                                                   Rng&) -> Color {
+        throw NotImplemented(4, "2", "est_radiance_global_illumination");
+    };
     s.adaptive.has_converged = [](const PixelStatistics&, double) -> bool {
         throw NotImplemented(5, "1", "has_converged");
     };
@@ -112,6 +124,20 @@ bool handout_of_part(int part) {
             case 3:
                 student::diffuse_f(Color(1), Vec3(0, 0, 1), Vec3(0, 0, 1));
                 break;
+            case 4: {
+                // A camera ray into the Cornell box, with this build's global stage.
+                Scene scene = load_scene(source_dir() + "/assets/scenes/cbox.json");
+                Stages stages = make_stages(StageSet::all());
+                std::unique_ptr<Accelerator> accelerator =
+                    build_accelerator(scene, stages, AcceleratorSettings{});
+                std::unique_ptr<Integrator> integrator = make_integrator(IntegratorKind::path);
+                RenderSettings settings;
+                RenderContext context{scene, *accelerator, stages, settings, *integrator};
+                Rng rng(1);
+                student::est_radiance_global_illumination(
+                    context, Ray(scene.camera.position, normalize(Vec3(0, 0, 1))), rng);
+                break;
+            }
             case 5:
                 student::has_converged(PixelStatistics{}, 0.05);
                 break;
@@ -134,7 +160,7 @@ std::string write_manifest(const std::string& name, const std::string& text) {
 TEST_CASE("stubs earn 0 points with 'not implemented' on every task of every part") {
     Stages stubs = stub_stages();
     GradeReport report = grade_all(all_manifests(), environment(stubs, 1));
-    REQUIRE(report.tasks.size() == 17);
+    REQUIRE(report.tasks.size() == 20);
     for (const TaskResult& t : report.tasks) {
         INFO(t.id << ": " << t.message);
         CHECK(t.status == TaskStatus::not_implemented);
@@ -143,7 +169,7 @@ TEST_CASE("stubs earn 0 points with 'not implemented' on every task of every par
         CHECK(std::isnan(t.value));
     }
     CHECK(report.points() == 0);
-    CHECK(report.max_points() == 400);
+    CHECK(report.max_points() == 500);
     CHECK_FALSE(report.all_passed());
 }
 
@@ -204,7 +230,7 @@ TEST_CASE("a student function that throws something else fails its task with the
     }
 }
 
-TEST_CASE("the manifests name registered checks, 100 points each; Part 4's absence is noted") {
+TEST_CASE("the manifests name registered checks, 100 points each; a missing part is noted") {
     for (int part : graded_parts()) {
         const PartManifest& m = manifest(part);
         CHECK(m.part == part);
@@ -220,12 +246,12 @@ TEST_CASE("the manifests name registered checks, 100 points each; Part 4's absen
     CHECK(manifest(1).tasks.size() == 4);
     CHECK(manifest(2).tasks.size() == 5);
     CHECK(manifest(3).tasks.size() == 6);
+    CHECK(manifest(4).tasks.size() == 3);
     CHECK(manifest(5).tasks.size() == 2);
     std::vector<std::string> notes;
     std::vector<PartManifest> project = read_manifests(source_dir() + "/assignments", &notes);
-    CHECK(project.size() == 4);
-    REQUIRE(notes.size() == 1);
-    CHECK(notes[0].find("Part 4") != std::string::npos);
+    CHECK(project.size() == 5);
+    CHECK(notes.empty());
 
     notes.clear();
     std::string dir = output_dir() + "/manifests/only_part1";
@@ -322,4 +348,43 @@ TEST_CASE("isolated tasks: a crash or an endless loop fails only its task") {
     GradeReport stub_report = grade_all({part1_manifest()}, environment(stubs, 1), nullptr, 30.0);
     for (const TaskResult& t : stub_report.tasks)
         CHECK(t.status == TaskStatus::not_implemented);
+}
+
+TEST_CASE("image cases: Russian roulette keys are read strictly and change the fingerprint") {
+    using nlohmann::json;
+    const json base = {{"scene", "scenes/cbox.json"}, {"integrator", "path"}, {"spp", 8}};
+    auto with = [&](const json& extra) {
+        json j = base;
+        j.update(extra);
+        return j;
+    };
+    ImageCase plain = parse_image_case(base, "case");
+    CHECK(plain.settings.russian_roulette);
+    CHECK(plain.settings.rr_depth == 3);
+    ImageCase rr0 = parse_image_case(with({{"rr_depth", 0}}), "case");
+    CHECK(rr0.settings.rr_depth == 0);
+    ImageCase off = parse_image_case(with({{"russian_roulette", false}}), "case");
+    CHECK_FALSE(off.settings.russian_roulette);
+    const std::string assets = source_dir() + "/assets";
+    // The default keeps the fingerprint of cases written before the keys existed.
+    CHECK(case_fingerprint(parse_image_case(with({{"rr_depth", 3}}), "case"), assets) ==
+          case_fingerprint(plain, assets));
+    CHECK(case_fingerprint(rr0, assets) != case_fingerprint(plain, assets));
+    CHECK(case_fingerprint(off, assets) != case_fingerprint(plain, assets));
+    CHECK(case_fingerprint(off, assets) != case_fingerprint(rr0, assets));
+
+    auto fails_with = [&](const json& extra, const std::string& expected) {
+        try {
+            parse_image_case(with(extra), "m.json: case");
+            FAIL("no error for " << extra.dump());
+        } catch (const InputError& e) {
+            INFO(e.what());
+            CHECK(std::string(e.what()).find(expected) != std::string::npos);
+        }
+    };
+    fails_with({{"rr_depth", -1}}, "m.json: case.rr_depth: expected an integer from 0");
+    fails_with({{"rr_depth", "off"}}, "case.rr_depth: expected an integer");
+    fails_with({{"russian_roulette", 1}}, "case.russian_roulette: expected true or false");
+    fails_with({{"russian_roulette", false}, {"rr_depth", 2}}, "has no effect");
+    fails_with({{"rr_dpth", 2}}, "unknown key \"rr_dpth\"");
 }
