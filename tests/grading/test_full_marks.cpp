@@ -100,7 +100,9 @@ TEST_CASE("CS184's textbook has_converged (no rare-event guard) earns full marks
 TEST_CASE("a path tracer written from the TODO steps (recursive) passes every Part 4 task") {
     Stages student = reference_stages();
     fixtures::install_handout_steps_global(student);
-    for (uint64_t seed = 1; seed <= 3; ++seed) {
+    // Two seeds: it draws the reference's random numbers, so the 20-seed
+    // test of the reference covers the noise; this covers the recursion.
+    for (uint64_t seed = 1; seed <= 2; ++seed) {
         GradeReport report = grade_all({manifest(4)}, environment(student, seed));
         for (const TaskResult& t : report.tasks) {
             INFO("seed " << seed << ", " << t.id << ": " << t.message);

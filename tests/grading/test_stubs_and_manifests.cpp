@@ -82,11 +82,9 @@ Stages stub_stages() {
                                       Rng&) -> Color {
         throw NotImplemented(3, "6", "one_bounce_radiance");
     };
-    s.global.at_least_one_bounce_radiance = [](const RenderContext&, const Ray&,
-                                               const SurfaceInteraction&, const Color&,
-                                               Rng&) -> Color {
-        throw NotImplemented(4, "1", "at_least_one_bounce_radiance");
-    };
+    s.global.at_least_one_bounce_radiance =
+        [](const RenderContext&, const Ray&, const SurfaceInteraction&, const Color&,
+           Rng&) -> Color { throw NotImplemented(4, "1", "at_least_one_bounce_radiance"); };
     s.global.est_radiance_global_illumination = [](const RenderContext&, const Ray&,
                                                    Rng&) -> Color {
         throw NotImplemented(4, "2", "est_radiance_global_illumination");
