@@ -1,7 +1,11 @@
 // Timer: wall-clock seconds since construction (steady clock).
+// CpuTimer: CPU seconds this process has used since construction, summed
+// over its threads (POSIX CLOCK_PROCESS_CPUTIME_ID): unlike wall-clock time
+// it does not grow while other processes hold the cores.
 #pragma once
 
 #include <chrono>
+#include <ctime>
 
 namespace pt {
 
@@ -15,6 +19,20 @@ public:
 
 private:
     std::chrono::steady_clock::time_point start_;
+};
+
+class CpuTimer {
+public:
+    CpuTimer() : start_(now()) {}
+    double seconds() const { return now() - start_; }
+
+private:
+    static double now() {
+        timespec t{};
+        clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+        return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+    }
+    double start_;
 };
 
 }  // namespace pt

@@ -10,6 +10,11 @@
 namespace pt {
 namespace {
 
+/// Below this |cos theta_i| a delta sample is dropped: 1 / cos must stay far
+/// from overflow, and a lobe this close to the tangent plane carries a
+/// vanishing share of light (measure zero for wo drawn at random).
+constexpr double kMinDeltaCosine = 1e-12;
+
 double alpha_of(const Material& m) {
     return std::max(m.roughness, ggx::kMinAlpha);
 }
@@ -103,7 +108,9 @@ BSDFSample BSDF::sample_f(const Vec3& wo, Vec2 u) const {
     if (n == 0) return s;
     const DeltaLobe& lobe = (n == 2 && u.x >= lobes[0].probability) ? lobes[1] : lobes[0];
     double cos_i = std::fabs(lobe.wi.z);
-    if (!(cos_i > 0)) return s;  // grazing: carries nothing
+    // Grazing: carries nothing. The bound is not 0: weight / 1e-310 is Inf,
+    // and Inf * 0 in an estimator is NaN (docs/numerics.md, case 39).
+    if (!(cos_i > kMinDeltaCosine)) return s;
     s.wi = lobe.wi;
     s.f = lobe.weight / cos_i;
     s.pdf = lobe.probability;

@@ -45,6 +45,7 @@ TEST_CASE("bad arguments get one line and exit code 2") {
           "'" + kCbox + "' --frobnicate", "'" + kCbox + "' -r 16", "'" + missing + "'",
           "'" + kCbox + "' '" + kCbox + "'",
           "'" + kCbox + "' -r 16 16 --reference '" + bad_ref + "'", "'" + kCbox + "' -a 32 zero",
+          "'" + kCbox + "' --clock sundial",
           "'" + kCbox + "' --out /proc/no/such/dir"}) {
         CAPTURE(args);
         test::CommandResult r = test::run(bench() + " accuracy " + args, dir);
@@ -134,4 +135,27 @@ TEST_CASE("depth caps are skipped, with a note, unless the baseline is the path 
     CHECK(r.err.find("skipping depth-2") != std::string::npos);
     nlohmann::json j = nlohmann::json::parse(test::read_file(dir + "/cbox_accuracy.json"));
     CHECK(j["techniques"].size() == 1);
+}
+
+TEST_CASE("with the path tracer as baseline, rr-off traces more rays and a depth cap fewer") {
+    // Same seed and spp: roulette only ends paths early, so the render
+    // without it traces strictly more rays (16x16, -m 8, roulette after 3
+    // bounces); a cap of 2 bounces traces strictly fewer. Deterministic.
+    const std::string dir = test::scratch_dir("bench_accuracy_path");
+    test::CommandResult r =
+        quick_run(dir, "--budget 0.3 --max-spp 2 -m 8 --clock cpu --techniques light,rr-off,depth-2");
+    REQUIRE(r.exit_code == 0);
+    CHECK(r.err.find("skipping") == std::string::npos);
+    nlohmann::json j = nlohmann::json::parse(test::read_file(dir + "/cbox_accuracy.json"));
+    REQUIRE(j["techniques"].size() == 3);
+    for (const auto& t : j["techniques"])
+        REQUIRE(!t["rows"].empty());
+    const double light = j["techniques"][0]["rows"][0]["rays"];
+    const double rr_off = j["techniques"][1]["rows"][0]["rays"];
+    const double depth2 = j["techniques"][2]["rows"][0]["rays"];
+    CHECK(j["techniques"][1]["name"] == "rr-off");
+    CHECK(j["clock"] == "cpu");
+    CHECK(r.out.find("CPU seconds per thread") != std::string::npos);
+    CHECK(rr_off > light);
+    CHECK(depth2 < light);
 }

@@ -8,6 +8,8 @@
 
 #include "core/frame.h"
 #include "core/sampling.h"
+#include "scene/bsdf.h"
+#include "scene/material.h"
 #include "stages/direct.h"
 
 using namespace pt;
@@ -69,5 +71,31 @@ TEST_CASE("shading frames and warps for normals near (0, 0, -1) and inputs at th
         CHECK(sample_concentric_disk(Vec2(u, u)).x <= 1.0);
         CHECK(sample_uniform_sphere(Vec2(u, 1 - u)).is_finite());
         CHECK(sample_cosine_hemisphere(Vec2(u, 0.25)).z >= 0.0);
+    }
+}
+
+TEST_CASE("mirror and glass samples at grazing angles never carry Inf") {
+    // f = weight / |cos theta_i|: a cosine of 1e-310 would make f Inf, and
+    // the estimator's f * |cos| / pdf then Inf or NaN. Such lobes give no
+    // sample; ordinary angles keep f * |cos| / pdf = the lobe's weight / probability.
+    for (MaterialType type : {MaterialType::mirror, MaterialType::glass}) {
+        Material m;
+        m.type = type;
+        BSDF bsdf(m, Frame(), {reference::diffuse_f, reference::diffuse_sample_f});
+        for (double c : {0.5, 1e-8, 1e-13, 1e-300, 1e-310, 0.0, -1e-310, -0.5}) {
+            Vec3 wo(std::sqrt(1 - c * c), 0, c);
+            for (double u : {0.01, 0.99}) {
+                INFO("material " << to_string(type) << ", cos theta_o " << c << ", u " << u);
+                BSDFSample s = bsdf.sample_f(wo, Vec2(u, 0.5));
+                CHECK(s.is_delta);
+                CHECK(finite(s.f));
+                CHECK(std::isfinite(s.pdf));
+                if (!s.valid()) continue;
+                Color weight = s.f * std::fabs(s.wi.z) / s.pdf;
+                CHECK(finite(weight));
+                CHECK(std::fabs(s.wi.z) > 1e-12);
+                if (type == MaterialType::mirror) CHECK(weight.g == doctest::Approx(1.0));
+            }
+        }
     }
 }

@@ -6,7 +6,9 @@
 // Collects N shadow rays as the direct integrator makes them (camera ray ->
 // first hit -> a light sample -> isect.spawn_ray_to), then times
 // Accelerator::occluded and Accelerator::intersect over that same list, one
-// thread, best of 3 runs each. Also times closest-hit camera rays.
+// thread, best of 3 runs each, in CPU seconds (so that other processes on
+// the machine do not count). Also times closest-hit camera rays, and counts
+// BVH nodes and primitive tests per ray (hardware-independent).
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -60,7 +62,7 @@ int main(int argc, char** argv) {
     auto time_best = [](auto body) {
         double best = 1e300;
         for (int run = 0; run < 3; ++run) {
-            Timer t;
+            CpuTimer t;
             body();
             best = std::min(best, t.seconds());
         }
@@ -73,14 +75,14 @@ int main(int argc, char** argv) {
         for (const Ray& r : shadow_rays)
             blocked += accelerator->occluded(r);
     });
-    uint64_t tests_occluded = (thread_counters().primitive_tests - before.primitive_tests) / 3;
+    RayCounters occluded_work = thread_counters() - before;
     before = thread_counters();
     double t_closest = time_best([&] {
         hits = 0;
         for (const Ray& r : shadow_rays)
             hits += accelerator->intersect(r).has_value();
     });
-    uint64_t tests_closest = (thread_counters().primitive_tests - before.primitive_tests) / 3;
+    RayCounters closest_work = thread_counters() - before;
     double t_camera = time_best([&] {
         camera_hits = 0;
         for (const Ray& r : camera_rays)
@@ -90,11 +92,13 @@ int main(int argc, char** argv) {
     std::printf("scene %s, accelerator %s, %zu shadow rays (%.1f%% blocked), %zu camera rays\n",
                 argv[1], accelerator->info().name.c_str(), shadow_rays.size(), 100.0 * blocked / n,
                 camera_rays.size());
-    std::printf(
-        "| query on the shadow rays | ns per ray | primitive tests per ray |\n|---|---|---|\n");
-    std::printf("| occluded (any hit) | %.1f | %.1f |\n", t_occluded / n * 1e9, tests_occluded / n);
-    std::printf("| intersect (closest hit) | %.1f | %.1f |\n", t_closest / n * 1e9,
-                tests_closest / n);
+    // Each query ran 3 times: per ray is work / (3 n).
+    std::printf("| query on the shadow rays | ns per ray | nodes per ray | primitive tests per ray "
+                "|\n|---|---|---|---|\n");
+    std::printf("| occluded (any hit) | %.1f | %.1f | %.1f |\n", t_occluded / n * 1e9,
+                occluded_work.nodes_visited / (3 * n), occluded_work.primitive_tests / (3 * n));
+    std::printf("| intersect (closest hit) | %.1f | %.1f | %.1f |\n", t_closest / n * 1e9,
+                closest_work.nodes_visited / (3 * n), closest_work.primitive_tests / (3 * n));
     std::printf("any-hit / closest-hit time on the same rays: %.2f\n", t_occluded / t_closest);
     std::printf("closest-hit camera rays: %.1f ns per ray; shadow / camera ray time: %.2f\n",
                 t_camera / camera_rays.size() * 1e9,

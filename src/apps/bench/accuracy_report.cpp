@@ -82,10 +82,15 @@ std::string accuracy_markdown(const AccuracyReport& r) {
            << " (from the spread of its passes), which every relMSE below includes";
     md << ".\n";
     md << "- Baseline: " << r.integrator << " integrator; " << r.threads << " threads, seed "
-       << r.seed << ". Seconds are wall-clock render time (BVH build excluded); the load "
-       << "average was " << r.load_before << " before and " << r.load_after
-       << " after, so timings are noisy on a shared machine: Mrays is the hardware-"
-       << "independent work.\n";
+       << r.seed << ". Seconds are "
+       << (r.clock == BenchClock::cpu
+               ? "the process's CPU seconds per thread during the render (--clock cpu: "
+                 "wall time on idle cores)"
+               : "wall-clock render time")
+       << " (BVH build excluded); the load average was " << r.load_before << " before and "
+       << r.load_after << " after"
+       << (r.clock == BenchClock::cpu ? "" : ", so timings are noisy on a shared machine")
+       << ": Mrays is the hardware-independent work.\n";
     md << "- Efficiency = 1 / (relMSE x seconds). * 1 spp shoots through the pixel centres "
        << "(aliased; left out of the ratios).\n";
 
@@ -153,6 +158,7 @@ nlohmann::json accuracy_json(const AccuracyReport& r) {
         {"height", r.height},
         {"threads", r.threads},
         {"seed", r.seed},
+        {"clock", r.clock == BenchClock::cpu ? "cpu" : "wall"},
         {"integrator", r.integrator},
         {"load_average", {{"before", r.load_before}, {"after", r.load_after}}},
         {"efficiency", "1 / (relMSE x seconds)"},
@@ -199,7 +205,8 @@ Image accuracy_plot(const AccuracyReport& r) {
     LogLogPlot plot;
     plot.title = r.scene_name + " " + std::to_string(r.width) + "x" + std::to_string(r.height) +
                  ": error against time (reference " + std::to_string(r.reference->spp) + " spp)";
-    plot.x_label = "seconds (" + std::to_string(r.threads) + " threads)";
+    plot.x_label = std::string(r.clock == BenchClock::cpu ? "CPU seconds per thread (" : "seconds (") +
+                   std::to_string(r.threads) + " threads)";
     plot.y_label = "relative RMS error, sqrt(relMSE)";
     double t_min = INFINITY, t_max = 0;
     const AccuracyRow* anchor = nullptr;

@@ -22,6 +22,7 @@ struct AccuracyReport {
     int width = 0, height = 0;  ///< pixels
     int threads = 1;
     uint64_t seed = 1;
+    BenchClock clock = BenchClock::wall;  ///< what the seconds are
     std::string integrator;               ///< the baseline's integrator
     std::string load_before, load_after;  ///< 1-minute load averages, "unknown" if unreadable
     const Reference* reference = nullptr;

@@ -46,8 +46,8 @@ std::vector<AccuracyRow> jittered_rows(const std::vector<AccuracyRow>& rows) {
 }  // namespace
 
 TechniqueRenderer::TechniqueRenderer(const Scene& scene, const RenderSettings& baseline,
-                                     Technique technique, int threads)
-    : scene_(scene), technique_(std::move(technique)), threads_(threads) {
+                                     Technique technique, int threads, BenchClock clock)
+    : scene_(scene), technique_(std::move(technique)), threads_(threads), clock_(clock) {
     config_.settings = baseline;
     technique_.apply(config_);
     const IntegratorKind kind = choose_integrator(scene, analyze_effects(scene, config_.settings),
@@ -65,11 +65,15 @@ TechniqueRender TechniqueRenderer::render(int spp, uint64_t seed, double time_li
     RenderContext context{scene_, *accelerator_, config_.stages, settings, *integrator_};
     RenderOptions options;
     options.threads = threads_;
-    options.time_limit = time_limit;
+    // The limit is wall-clock time (the renderer's). With --clock cpu the
+    // machine may be shared: allow a load of 4 before cutting a render off.
+    options.time_limit = clock_ == BenchClock::cpu ? 4 * time_limit : time_limit;
+    CpuTimer cpu;
     RenderResult result = render_image(context, options);
     TechniqueRender r;
     r.image = std::move(result.image);
-    r.seconds = result.seconds;
+    // CPU seconds per thread: what the render would take on idle cores.
+    r.seconds = clock_ == BenchClock::cpu ? cpu.seconds() / threads_ : result.seconds;
     r.counters = result.counters;
     r.mean_spp = double(result.counters.camera_rays) / double(r.image.pixel_count());
     r.complete = result.complete;

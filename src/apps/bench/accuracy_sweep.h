@@ -34,10 +34,16 @@ struct Scene;
 
 namespace pt::bench {
 
+/// What a render's seconds are (`--clock`).
+enum class BenchClock {
+    wall,  ///< wall-clock time: what a user waits, noisy on a shared machine
+    cpu,   ///< CPU seconds of the process / threads: wall time on idle cores, robust to load
+};
+
 /// One render of a technique.
 struct TechniqueRender {
     Image image;
-    double seconds = 0;    ///< wall-clock time of the render (without building the BVH)
+    double seconds = 0;    ///< render time by the chosen clock (without building the BVH)
     RayCounters counters;  ///< rays, tests
     double mean_spp = 0;   ///< camera rays per pixel (below the -s value for adaptive sampling)
     bool complete = true;  ///< false: cut off by the time limit
@@ -49,7 +55,7 @@ struct TechniqueRender {
 class TechniqueRenderer {
   public:
     TechniqueRenderer(const Scene& scene, const RenderSettings& baseline, Technique technique,
-                      int threads);
+                      int threads, BenchClock clock = BenchClock::wall);
     /// Renders at `spp` samples per pixel (the maximum for adaptive sampling)
     /// with `seed`; stops after `time_limit` seconds when > 0.
     TechniqueRender render(int spp, uint64_t seed, double time_limit) const;
@@ -66,6 +72,7 @@ class TechniqueRenderer {
     std::unique_ptr<Accelerator> accelerator_;
     std::unique_ptr<Integrator> integrator_;
     int threads_;
+    BenchClock clock_;
     double build_seconds_ = 0;
 };
 

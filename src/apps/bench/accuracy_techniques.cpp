@@ -20,9 +20,6 @@ void cap_depth(TechniqueConfig& c) {
 }
 
 const std::vector<Technique>& all_techniques() {
-    // Pending Part 4's RenderSettings::russian_roulette, one more entry:
-    //   {"rr-off", "path tracing without Russian roulette (--rr-depth off)", "light",
-    //    [](TechniqueConfig& c) { c.settings.russian_roulette = false; }, true},
     static const std::vector<Technique> techniques = {
         {"hemisphere", "light at each vertex by uniform hemisphere sampling (-H)", "light",
          [](TechniqueConfig& c) { c.settings.direct = DirectStrategy::hemisphere; }},
@@ -38,6 +35,8 @@ const std::vector<Technique>& all_techniques() {
              c.settings.adaptive = true;
              c.stages.adaptive.has_converged = textbook_has_converged;
          }},
+        {"rr-off", "no Russian roulette (--rr-depth off): paths end only at -m or a miss", "light",
+         [](TechniqueConfig& c) { c.settings.russian_roulette = false; }, true},
         {"linear-scan", "no BVH: every ray tests every primitive (--accel none)", "light",
          [](TechniqueConfig& c) { c.accelerator.use_bvh = false; }},
         {"depth-1", "-m 1: at most 1 bounce (biased against the baseline's -m)", "light",

@@ -44,13 +44,16 @@ const char* const kHelp = R"(bench accuracy: what accuracy costs in time, for on
                       (alone, without --budget: only the equal-time renders)
   --techniques LIST   all, or some of: hemisphere, light, mis, adaptive,
                       adaptive-noguard, linear-scan, and for the path
-                      tracer (-m 2 or more) depth-1 ... depth-8         [all]
+                      tracer (-m 2 or more) rr-off, depth-1 ... depth-8 [all]
   -r W H              resolution        [the scene's film, longer side 256]
   -t N                threads                    [all hardware threads]
   -l N, -m N          samples per area light, maximum depth   [1, 1]
                       (-m 100000: no cap; Russian roulette ends the paths)
   -a N TOL            adaptive sampling's batch and tolerance [32 0.05]
   --seed N            seed of every render                    [1]
+  --clock wall|cpu    seconds as wall-clock time, or as the process's CPU
+                      seconds per thread (wall time on idle cores; robust
+                      when other processes share the machine)  [wall]
   --max-spp N         the sweep stops at N spp at the latest  [4096]
   --reference FILE    a converged reference (PFM, linear) instead of the cache;
                       its spp is read from FILE.json beside it when there is one
@@ -76,6 +79,7 @@ struct AccuracyOptions {
     std::vector<Technique> techniques;
     int width = 0, height = 0;  ///< 0: from the scene's film
     int threads = 1;
+    BenchClock clock = BenchClock::wall;
     RenderSettings baseline;
     std::string reference_path;
     int reference_spp = 1024;
@@ -118,6 +122,10 @@ AccuracyOptions parse_accuracy_options(const Args& a) {
             throw InputError("accuracy: -a (max tolerance): expected a number > 0, got '" + tol +
                              "'");
     }
+    const std::string clock = a.get("--clock", "wall");
+    if (clock != "wall" && clock != "cpu")
+        throw InputError("accuracy: --clock: expected wall or cpu, got '" + clock + "'");
+    o.clock = clock == "cpu" ? BenchClock::cpu : BenchClock::wall;
     o.sweep.seed = uint64_t(a.get_int("--seed", 1, 0, 1 << 30));
     o.sweep.max_spp = a.get_int("--max-spp", 4096, 1, 1 << 20);
     o.reference_path = a.get("--reference", "");
@@ -172,6 +180,7 @@ int run_accuracy(const std::vector<std::string>& args) {
             {"-m", 1},
             {"-a", 2},
             {"--seed", 1},
+            {"--clock", 1},
             {"--max-spp", 1},
             {"--reference", 1},
             {"--reference-spp", 1},
@@ -195,6 +204,7 @@ int run_accuracy(const std::vector<std::string>& args) {
     report.height = scene.film_height;
     report.threads = o.threads;
     report.seed = o.sweep.seed;
+    report.clock = o.clock;
     report.integrator = to_string(
         choose_integrator(scene, analyze_effects(scene, o.baseline), o.baseline, nullptr));
     Reference reference;
@@ -226,7 +236,7 @@ int run_accuracy(const std::vector<std::string>& args) {
                       << o.baseline.max_depth << "\n";
             continue;
         }
-        TechniqueRenderer renderer(scene, o.baseline, t, o.threads);
+        TechniqueRenderer renderer(scene, o.baseline, t, o.threads, o.clock);
         const SweepResult* swept = nullptr;
         if (o.run_sweep) {
             report.sweeps.push_back(sweep(renderer, reference.image, o.sweep, std::cerr));
