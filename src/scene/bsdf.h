@@ -91,6 +91,8 @@ class BSDF {
     /// The BSDF of `material` at a point whose local shading frame is `frame`.
     BSDF(const Material& material, const Frame& frame, DiffuseRoutines diffuse)
         : material_(&material), frame_(frame), diffuse_(diffuse) {}
+    /// The BSDF keeps a pointer to its material: a temporary would dangle.
+    BSDF(Material&& material, const Frame& frame, DiffuseRoutines diffuse) = delete;
 
     /// World-space direction to the local frame, and back.
     Vec3 to_local(const Vec3& w) const { return frame_.to_local(w); }

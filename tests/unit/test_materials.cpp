@@ -28,6 +28,7 @@ namespace {
 BSDF make_bsdf(const Material& m, const Frame& frame = Frame()) {
     return BSDF(m, frame, {reference::diffuse_f, reference::diffuse_sample_f});
 }
+BSDF make_bsdf(Material&& m, const Frame& frame = Frame()) = delete;  // the BSDF would dangle
 
 Material conductor(double roughness, const Color& eta, const Color& k) {
     Material m;
@@ -182,7 +183,8 @@ TEST_CASE("microfacet: weights f cos / pdf never exceed F (energy <= 1), recipro
         }
     }
     // Below the surface: nothing, in either argument.
-    BSDF bsdf = make_bsdf(conductor(0.5, Color(0.2), Color(3)));
+    const Material gold = conductor(0.5, Color(0.2), Color(3));
+    BSDF bsdf = make_bsdf(gold);
     CHECK(bsdf.f(Vec3(0, 0, 1), Vec3(0.6, 0, -0.8)).is_black());
     CHECK(bsdf.pdf(Vec3(0, 0, 1), Vec3(0.6, 0, -0.8)) == 0);
     CHECK_FALSE(bsdf.sample_f(Vec3(0, 0.6, -0.8), Vec2(0.3, 0.3)).valid());
