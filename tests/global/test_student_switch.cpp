@@ -2,7 +2,7 @@
 // functions in the table, the handout's stubs stop with "Part 4, task N",
 // the reference functions graded as a student's give the reference image,
 // and a solution written from the TODO comments of assignments/part4 alone
-// (below, as a student would write it) renders the reference's image: the
+// (global/handout_steps.h, as a student would write it) renders the reference's image: the
 // same paths from the same random numbers, equal up to the rounding of a
 // different summation order.
 #include <doctest/doctest.h>
@@ -13,56 +13,13 @@
 
 #include "core/error.h"
 #include "global/global_render.h"
+#include "global/handout_steps.h"
 #include "test_util.h"
 
 using namespace pt;
 using namespace pt::global_test;
 
 namespace {
-
-// A solution of tasks 4.1 and 4.2 that follows the TODO comments step by step.
-Color todo_at_least_one_bounce_radiance(const RenderContext& context, const Ray& ray,
-                                        const SurfaceInteraction& isect, const Color& throughput,
-                                        Rng& rng) {
-    BSDF bsdf = context.bsdf_at(isect);
-    Vec3 wo = bsdf.to_local(isect.wo);
-    const int bounces = isect.depth + 1, m = context.settings.max_depth;
-    const bool counted = context.settings.accumulate_bounces || bounces == m;
-    Color L;
-    if (counted && !bsdf.is_delta())
-        L = context.stages.direct.one_bounce_radiance(context, ray, isect, rng);
-    if (bounces == m && !(bsdf.is_delta() && counted)) return L;
-    BSDFSample bs = bsdf.sample_f(wo, rng.next_2d());
-    if (!bs.valid() || bs.f.is_black()) return L;
-    Color weight = bs.f * std::fabs(bs.wi.z) / bs.pdf;
-    if (context.settings.russian_roulette && bounces > context.settings.rr_depth) {
-        double q = std::min(kMaxSurvivalProbability, (throughput * weight).max_component());
-        if (rng.next_1d() >= q) return L;
-        weight /= q;
-    }
-    Ray next = isect.spawn_ray(bsdf.to_world(bs.wi));
-    std::optional<SurfaceInteraction> hit = context.intersect(next);
-    if (bs.is_delta && counted)
-        L += weight * (hit ? context.stages.direct.zero_bounce_radiance(context, next, *hit)
-                           : context.lights.environment_radiance(next.d));
-    if (hit && bounces < m)
-        L += weight *
-             todo_at_least_one_bounce_radiance(context, next, *hit, throughput * weight, rng);
-    return L;
-}
-
-Color todo_est_radiance_global_illumination(const RenderContext& context, const Ray& ray,
-                                            Rng& rng) {
-    const bool zero = context.settings.accumulate_bounces || context.settings.max_depth == 0;
-    std::optional<SurfaceInteraction> isect = context.intersect(ray);
-    if (!isect) return zero ? context.lights.environment_radiance(ray.d) : Color(0);
-    Color L;
-    if (zero) L += context.stages.direct.zero_bounce_radiance(context, ray, *isect);
-    if (context.settings.max_depth >= 1)
-        L += context.stages.global.at_least_one_bounce_radiance(context, ray, *isect, Color(1.0),
-                                                                rng);
-    return L;
-}
 
 Scene cbox_with(const std::string& scene) {
     return load_scene(test::source_path("assets/scenes/" + scene));
@@ -111,7 +68,8 @@ TEST_CASE("the reference graded as a student gives the reference image, byte for
 
 TEST_CASE("a solution written from the TODO comments renders the reference's image") {
     Stages todo = make_stages(StageSet::parse("global"));
-    todo.global = {todo_at_least_one_bounce_radiance, todo_est_radiance_global_illumination};
+    todo.global = {handout_steps::bounce<handout_steps::Bug::none>,
+                   handout_steps::camera_ray<handout_steps::CameraBug::none>};
     // cbox has no glass (whose eta^2 the reference keeps out of roulette and
     // the handout does not); cbox_spheres' mirror exercises delta bounces.
     for (const char* name : {"cbox.json", "cbox_spheres.json"}) {
