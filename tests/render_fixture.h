@@ -4,8 +4,8 @@
 
 #include <memory>
 
-#include "render/integrator.h"
-#include "render/render_context.h"
+#include "render/integrators.h"
+#include "stages/render_context.h"
 #include "render/renderer.h"
 #include "scene/scene_loader.h"
 #include "stages/stages.h"

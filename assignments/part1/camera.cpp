@@ -3,7 +3,7 @@
 // in src/stages/camera.h.
 #include "core/error.h"
 #include "core/rng.h"
-#include "render/render_context.h"
+#include "stages/render_context.h"
 #include "stages/camera.h"
 
 namespace pt::student {

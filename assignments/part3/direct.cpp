@@ -18,8 +18,8 @@
 #include "core/error.h"
 #include "core/math.h"
 #include "core/sampling.h"
-#include "render/mis.h"
-#include "render/render_context.h"
+#include "stages/mis.h"
+#include "stages/render_context.h"
 #include "stages/direct.h"
 
 namespace pt::student {
@@ -67,7 +67,7 @@ Color one_bounce_radiance(const RenderContext& context, const Ray& ray,
     // TODO(part3.6): pick the estimator by context.settings.direct:
     // DirectStrategy::hemisphere (-H) -> estimate_direct_lighting_hemisphere,
     // DirectStrategy::light -> estimate_direct_lighting_importance,
-    // DirectStrategy::mis -> estimate_direct_lighting_mis (given, render/mis.h).
+    // DirectStrategy::mis -> estimate_direct_lighting_mis (given, stages/mis.h).
     (void)context, (void)ray, (void)isect, (void)rng;
     throw NotImplemented(3, "6", "one_bounce_radiance");
 }

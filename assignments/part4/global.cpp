@@ -20,7 +20,7 @@
 #include <optional>
 
 #include "core/error.h"
-#include "render/render_context.h"
+#include "stages/render_context.h"
 #include "stages/global.h"
 
 namespace pt::student {

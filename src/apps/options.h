@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "render/renderer.h"
-#include "render/settings.h"
+#include "stages/settings.h"
 #include "stages/stage_set.h"
 #include "stages/stages.h"
 

@@ -15,9 +15,9 @@
 #include "grade/function_checks.h"
 #include "grade/params.h"
 #include "grade/random_inputs.h"
-#include "render/integrator.h"
-#include "render/mis.h"
-#include "render/render_context.h"
+#include "render/integrators.h"
+#include "stages/mis.h"
+#include "stages/render_context.h"
 
 namespace pt {
 namespace {

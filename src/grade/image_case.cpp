@@ -6,8 +6,8 @@
 #include <sstream>
 
 #include "core/error.h"
-#include "render/integrator.h"
-#include "render/render_context.h"
+#include "render/integrators.h"
+#include "stages/render_context.h"
 #include "scene/scene_loader.h"
 
 namespace pt {

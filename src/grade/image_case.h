@@ -27,7 +27,7 @@
 #include <nlohmann/json.hpp>
 
 #include "render/renderer.h"
-#include "render/settings.h"
+#include "stages/settings.h"
 #include "scene/scene.h"
 #include "stages/stages.h"
 

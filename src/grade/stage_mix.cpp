@@ -1,8 +1,8 @@
 #include "grade/stage_mix.h"
 
 #include "core/error.h"
-#include "render/mis.h"
-#include "render/render_context.h"
+#include "stages/mis.h"
+#include "stages/render_context.h"
 
 namespace pt {
 namespace {

@@ -7,7 +7,7 @@
 #include "core/error.h"
 #include "core/math.h"
 #include "image/tonemap.h"
-#include "render/render_context.h"
+#include "stages/render_context.h"
 #include "scene/scene.h"
 
 namespace pt {

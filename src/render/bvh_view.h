@@ -17,7 +17,7 @@
 #include <string>
 
 #include "image/image.h"
-#include "render/integrator.h"
+#include "render/integrators.h"
 #include "stages/bvh.h"
 
 namespace pt {

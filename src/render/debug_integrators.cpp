@@ -1,8 +1,8 @@
 // The two debug integrators of Part 1: normals and depth.
 #include <algorithm>
 
-#include "render/integrator.h"
-#include "render/render_context.h"
+#include "render/integrators.h"
+#include "stages/render_context.h"
 
 namespace pt {
 namespace {

@@ -4,8 +4,8 @@
 //   -m 1 (>= 1) zero_bounce_radiance + one_bounce_radiance
 //   -o 0        only the m-th bounce: -m 1 -o 0 is direct light without emission
 // Rays that leave the scene see the environment (zero bounces).
-#include "render/integrator.h"
-#include "render/render_context.h"
+#include "render/integrators.h"
+#include "stages/render_context.h"
 #include "render/student_probe.h"
 
 namespace pt {

@@ -13,8 +13,8 @@
 //            interreflection; -m 1 with lamps seen in mirrors or glass)
 #include <stdexcept>
 
-#include "render/integrator.h"
-#include "scene/effects.h"
+#include "render/integrators.h"
+#include "stages/effects.h"
 #include "scene/scene.h"
 
 namespace pt {

@@ -1,8 +1,8 @@
 // The path integrator: global illumination through the global stage
 // (stages/global.h), so that `--student global` runs the student's path
 // tracer: est_radiance_global_illumination per camera ray.
-#include "render/integrator.h"
-#include "render/render_context.h"
+#include "render/integrators.h"
+#include "stages/render_context.h"
 #include "render/student_probe.h"
 
 namespace pt {

@@ -8,7 +8,7 @@
 
 #include "core/progress.h"
 #include "core/timer.h"
-#include "render/render_context.h"
+#include "stages/render_context.h"
 
 namespace pt {
 

@@ -1,6 +1,6 @@
 #include "render/student_probe.h"
 
-#include "render/render_context.h"
+#include "stages/render_context.h"
 
 namespace pt {
 

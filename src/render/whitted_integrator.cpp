@@ -21,8 +21,8 @@
 // interreflection, so the difference to the path tracer's convention (in
 // which a reflection in a mirror is one more bounce) shows only as the
 // reflections Whitted adds: docs/global.md, "The Whitted integrator".
-#include "render/integrator.h"
-#include "render/render_context.h"
+#include "render/integrators.h"
+#include "stages/render_context.h"
 #include "render/student_probe.h"
 
 namespace pt {

@@ -34,7 +34,7 @@
 //               (microfacet.h). Reflection only.
 //
 // One BSDF is built per hit, from the Material and the shading frame, by
-// RenderContext::bsdf_at (render/render_context.h), which also decides on
+// RenderContext::bsdf_at (stages/render_context.h), which also decides on
 // which side of the surface the frame's +z lies (two-sided for all but glass).
 // Materials are a closed set (material.h), so the BSDF switches on the
 // type instead of allocating a virtual object per hit.

@@ -4,7 +4,7 @@
 #include "core/counters.h"
 #include "core/rng.h"
 #include "core/sampling.h"
-#include "render/render_context.h"
+#include "stages/render_context.h"
 
 namespace pt::reference {
 

@@ -5,8 +5,8 @@
 
 #include "core/math.h"
 #include "core/sampling.h"
-#include "render/mis.h"
-#include "render/render_context.h"
+#include "stages/mis.h"
+#include "stages/render_context.h"
 
 namespace pt::reference {
 

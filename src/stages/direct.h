@@ -28,7 +28,7 @@
 //
 //     where theta' is the angle between the light's normal at p' and the
 //     direction back to p. Light::sample_Li (scene/light_set.h) returns it.
-// A third, beyond the course: estimate_direct_lighting_mis (render/mis.h)
+// A third, beyond the course: estimate_direct_lighting_mis (stages/mis.h)
 // combines light samples and BSDF samples with Veach's power heuristic
 // (Veach 1997, chapter 9), robust for both small and large lights.
 //

@@ -9,7 +9,7 @@
 //   light (default)  next-event estimation by light sampling; emission found
 //                    by BSDF-sampled rays counts only after delta bounces
 //   mis              light samples and the path's own BSDF sample, weighted
-//                    by the power heuristic (render/mis.h): the continuation
+//                    by the power heuristic (stages/mis.h): the continuation
 //                    ray doubles as the BSDF half of MIS
 //   hemisphere       no light sampling: every BSDF-sampled ray that finds an
 //                    emitter counts it (the naive path tracer; point and
@@ -25,8 +25,8 @@
 #include <cmath>
 #include <optional>
 
-#include "render/mis.h"
-#include "render/render_context.h"
+#include "stages/mis.h"
+#include "stages/render_context.h"
 
 namespace pt::reference {
 

@@ -18,10 +18,10 @@
 #include <memory>
 #include <string>
 
-#include "render/integrator.h"
-#include "render/render_context.h"
+#include "render/integrators.h"
+#include "stages/render_context.h"
 #include "render/renderer.h"
-#include "scene/effects.h"
+#include "stages/effects.h"
 #include "scene/scene_loader.h"
 #include "stages/stages.h"
 

@@ -7,8 +7,8 @@
 
 #include "bvh_check.h"
 #include "core/error.h"
-#include "render/integrator.h"
-#include "render/render_context.h"
+#include "render/integrators.h"
+#include "stages/render_context.h"
 #include "render/renderer.h"
 #include "scene/scene_loader.h"
 

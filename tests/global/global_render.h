@@ -9,8 +9,8 @@
 
 #include "analytic/tiny_render.h"
 #include "core/math.h"
-#include "render/integrator.h"
-#include "render/render_context.h"
+#include "render/integrators.h"
+#include "stages/render_context.h"
 #include "render/renderer.h"
 #include "scene/scene_loader.h"
 #include "stages/stages.h"

@@ -10,7 +10,7 @@
 #include <cmath>
 #include <optional>
 
-#include "render/render_context.h"
+#include "stages/render_context.h"
 #include "stages/global.h"
 
 namespace pt::handout_steps {

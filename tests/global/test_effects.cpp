@@ -11,7 +11,7 @@
 
 #include "global/global_render.h"
 #include "render_fixture.h"
-#include "scene/effects.h"
+#include "stages/effects.h"
 #include "test_util.h"
 
 using namespace pt;

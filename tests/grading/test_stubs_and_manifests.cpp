@@ -12,8 +12,8 @@
 #include "grade/check_registry.h"
 #include "grade/image_case.h"
 #include "grading_helpers.h"
-#include "render/integrator.h"
-#include "render/render_context.h"
+#include "render/integrators.h"
+#include "stages/render_context.h"
 #include "scene/scene_loader.h"
 #include "stages/camera.h"
 

@@ -10,7 +10,7 @@
 #include "core/frame.h"
 #include "core/rng.h"
 #include "core/sampling.h"
-#include "render/render_context.h"
+#include "stages/render_context.h"
 #include "scene/mesh.h"
 #include "stages/accelerator.h"
 

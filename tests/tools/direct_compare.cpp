@@ -26,8 +26,8 @@
 #include "core/timer.h"
 #include "image/image_io.h"
 #include "image/metrics.h"
-#include "render/integrator.h"
-#include "render/render_context.h"
+#include "render/integrators.h"
+#include "stages/render_context.h"
 #include "render/renderer.h"
 #include "scene/scene_loader.h"
 

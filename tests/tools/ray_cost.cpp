@@ -17,8 +17,8 @@
 
 #include "core/counters.h"
 #include "core/timer.h"
-#include "render/integrator.h"
-#include "render/render_context.h"
+#include "render/integrators.h"
+#include "stages/render_context.h"
 #include "scene/scene_loader.h"
 #include "stages/camera.h"
 

@@ -13,10 +13,10 @@
 #include "core/timer.h"
 #include "image/image_io.h"
 #include "image/metrics.h"
-#include "render/integrator.h"
-#include "render/render_context.h"
+#include "render/integrators.h"
+#include "stages/render_context.h"
 #include "render/renderer.h"
-#include "scene/effects.h"
+#include "stages/effects.h"
 #include "scene/scene.h"
 
 namespace pt::bench {

@@ -25,7 +25,7 @@
 #include <string>
 
 #include "image/image.h"
-#include "render/settings.h"
+#include "stages/settings.h"
 
 namespace pt {
 struct Scene;

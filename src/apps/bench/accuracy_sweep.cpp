@@ -6,9 +6,9 @@
 
 #include "core/timer.h"
 #include "image/metrics.h"
-#include "render/render_context.h"
+#include "stages/render_context.h"
 #include "render/renderer.h"
-#include "scene/effects.h"
+#include "stages/effects.h"
 #include "scene/scene.h"
 
 namespace pt::bench {

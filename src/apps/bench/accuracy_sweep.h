@@ -25,7 +25,7 @@
 #include "apps/bench/accuracy_techniques.h"
 #include "core/counters.h"
 #include "image/image.h"
-#include "render/integrator.h"
+#include "render/integrators.h"
 #include "stages/accelerator.h"
 
 namespace pt {

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "render/settings.h"
+#include "stages/settings.h"
 #include "stages/stages.h"
 
 namespace pt::bench {

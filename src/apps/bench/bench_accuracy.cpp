@@ -20,9 +20,9 @@
 #include "core/error.h"
 #include "image/colormap.h"
 #include "image/image_io.h"
-#include "render/integrator.h"
+#include "render/integrators.h"
 #include "render/sample_rate_image.h"
-#include "scene/effects.h"
+#include "stages/effects.h"
 #include "scene/scene.h"
 #include "scene/scene_loader.h"
 

@@ -19,10 +19,10 @@
 #include "apps/bench/bench_command.h"
 #include "apps/bench/bench_util.h"
 #include "core/error.h"
-#include "render/integrator.h"
-#include "render/render_context.h"
+#include "render/integrators.h"
+#include "stages/render_context.h"
 #include "render/renderer.h"
-#include "scene/effects.h"
+#include "stages/effects.h"
 #include "scene/scene_loader.h"
 
 namespace pt::bench {

@@ -7,7 +7,7 @@
 
 #include "core/rng.h"
 #include "core/timer.h"
-#include "render/render_context.h"
+#include "stages/render_context.h"
 #include "render/renderer.h"
 #include "stages/camera.h"
 

@@ -14,7 +14,7 @@
 #include "core/rng.h"
 #include "core/sampling.h"
 #include "core/timer.h"
-#include "render/render_context.h"
+#include "stages/render_context.h"
 #include "scene/scene.h"
 #include "stages/camera.h"
 

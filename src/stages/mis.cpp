@@ -1,10 +1,10 @@
-#include "render/mis.h"
+#include "stages/mis.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include "core/sampling.h"
-#include "render/render_context.h"
+#include "stages/render_context.h"
 
 namespace pt {
 

@@ -29,7 +29,7 @@
 #include <string>
 #include <vector>
 
-#include "render/settings.h"
+#include "stages/settings.h"
 #include "scene/scene.h"
 
 namespace pt {

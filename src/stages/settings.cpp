@@ -1,4 +1,4 @@
-#include "render/settings.h"
+#include "stages/settings.h"
 
 namespace pt {
 

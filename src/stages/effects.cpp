@@ -1,4 +1,4 @@
-#include "scene/effects.h"
+#include "stages/effects.h"
 
 #include <algorithm>
 #include <cmath>

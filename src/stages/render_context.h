@@ -10,7 +10,7 @@
 
 #include "core/color.h"
 #include "core/rng.h"
-#include "render/settings.h"
+#include "stages/settings.h"
 #include "scene/bsdf.h"
 #include "scene/interaction.h"
 #include "scene/light_set.h"
@@ -37,7 +37,7 @@ public:
     const RenderSettings& settings;
     const Integrator& integrator;
     const LightSet& lights;  ///< every light of the scene (scene/light_set.h)
-    /// The code paths this render runs (scene/effects.h): the effects
+    /// The code paths this render runs (stages/effects.h): the effects
     /// analysis of scene and settings, plus settings.force.
     const CodePaths code_paths;
 

@@ -27,7 +27,7 @@ enum class IntegratorKind {
 const char* to_string(DirectStrategy s);
 const char* to_string(IntegratorKind k);
 
-/// Code paths that the effects analysis (scene/effects.h) may switch off
+/// Code paths that the effects analysis (stages/effects.h) may switch off
 /// because the effect they simulate cannot contribute to the image. Here
 /// each field forces its path *on* regardless (RenderSettings::force): the
 /// tests use it to prove that skipping a path changes no pixel. Not a flag.

@@ -1,11 +1,11 @@
-#include "render/render_context.h"
+#include "stages/render_context.h"
 
 #include <cmath>
 
 #include "core/counters.h"
 #include "core/math.h"
-#include "render/integrator.h"
-#include "scene/effects.h"
+#include "stages/integrator.h"
+#include "stages/effects.h"
 
 namespace pt {
 

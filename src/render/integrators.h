@@ -1,27 +1,15 @@
-// Integrator: turns a camera ray into a radiance estimate. One instance is
-// shared by all threads, so Li must be const and keep its state in the Rng.
+// The integrators (DESIGN.md "Effects"): normals, depth, Whitted, direct
+// and path tracing, each an Integrator (stages/integrator.h), and the rule
+// by which `--integrator auto` picks one for a scene.
 #pragma once
 
 #include <memory>
 #include <string>
 
-#include "core/color.h"
-#include "core/ray.h"
-#include "core/rng.h"
-#include "render/settings.h"
+#include "stages/integrator.h"
 #include "stages/stage_set.h"
 
 namespace pt {
-
-struct RenderContext;
-
-class Integrator {
-public:
-    virtual ~Integrator() = default;
-    /// Incident radiance at the ray origin from direction -ray.d.
-    virtual Color Li(const RenderContext& context, const Ray& ray, Rng& rng) const = 0;
-    virtual IntegratorKind kind() const = 0;
-};
 
 /// n * 0.5 + 0.5 of the first hit's shading normal; black on a miss (CS184 Part 1).
 std::unique_ptr<Integrator> make_normals_integrator();
