@@ -4,7 +4,7 @@
 # Usage: scripts/setup.sh [extra packages...]
 set -euo pipefail
 
-packages=(cmake g++ make libstb-dev libtinyobjloader-dev doctest-dev nlohmann-json3-dev "$@")
+packages=(cmake g++ make libstb-dev libtinyobjloader-dev libtinyexr-dev doctest-dev nlohmann-json3-dev "$@")
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -217,7 +217,8 @@ public:
             if (j.has("file")) {
                 env.file = resolve(path_, j.string("file"));
                 std::string ext = file_extension(env.file);
-                if (ext != ".hdr" && ext != ".pfm") j.fail("file", "expected a .hdr or .pfm lat-long map");
+                if (ext != ".hdr" && ext != ".pfm" && ext != ".exr")
+                    j.fail("file", "expected a .hdr, .pfm or .exr lat-long map");
                 require_readable_file(env.file, j.file() + ": " + j.path_of("file"));
             }
             env.scale = j.positive("scale", 1.0);
