@@ -48,8 +48,24 @@ std::string read_text(const std::string& path) {
 }
 
 void read_camera(Scene& scene, const JsonReader& j) {
-    j.allow_only({"position", "look_at", "up", "vfov", "lens_radius", "focal_distance", "near_clip", "far_clip"});
     Camera& c = scene.camera;
+    std::string type = j.has("type") ? j.string("type") : "perspective";
+    // Each type has its own keys; a key of another type is an error, not ignored.
+    if (type == "perspective") {
+        c.type = CameraType::perspective;
+        j.allow_only({"type", "position", "look_at", "up", "vfov", "lens_radius", "focal_distance", "near_clip", "far_clip"});
+    } else if (type == "orthographic") {
+        c.type = CameraType::orthographic;
+        j.allow_only({"type", "position", "look_at", "up", "height", "near_clip", "far_clip"});
+        if (!j.has("height")) j.fail("height", "an orthographic camera needs \"height\" (the view height in scene units)");
+        c.height = j.positive("height");
+    } else if (type == "fisheye") {
+        c.type = CameraType::fisheye;
+        j.allow_only({"type", "position", "look_at", "up", "fov", "near_clip", "far_clip"});
+        c.fov = j.number_in("fov", 1e-6, 360, 180);
+    } else {
+        j.fail("type", "unknown camera type \"" + type + "\" (expected perspective, orthographic or fisheye)");
+    }
     c.position = j.vec3("position");
     c.look_at = j.vec3("look_at");
     c.up = j.vec3("up", Vec3(0, 1, 0));

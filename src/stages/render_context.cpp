@@ -45,13 +45,26 @@ SurfaceInteraction make_interaction(const Scene& scene, const Ray& ray, const Hi
     return si;
 }
 
+namespace {
+
+/// `stages` with generate_ray replaced by the projection of a camera that
+/// is not perspective (Part 1's generate_ray is the perspective one).
+Stages with_camera_projection(Stages stages, const Camera& camera) {
+    if (camera.type == CameraType::orthographic) stages.camera.generate_ray = orthographic_ray;
+    if (camera.type == CameraType::fisheye) stages.camera.generate_ray = fisheye_ray;
+    return stages;
+}
+
+}  // namespace
+
 RenderContext::RenderContext(const Scene& scene_, const Accelerator& accelerator_,
                              const Stages& stages_, const RenderSettings& settings_,
                              const Integrator& integrator_)
     : owned_lights_(std::make_shared<const LightSet>(scene_)),
+      owned_stages_(with_camera_projection(stages_, scene_.camera)),
       scene(scene_),
       accelerator(accelerator_),
-      stages(stages_),
+      stages(owned_stages_),
       settings(settings_),
       integrator(integrator_),
       lights(*owned_lights_),
@@ -71,6 +84,7 @@ bool RenderContext::occluded(const Ray& ray) const {
 }
 
 Color RenderContext::radiance(const Ray& ray, Rng& rng) const {
+    if (sees_nothing(ray)) return Color(0);
     Color L = integrator.Li(*this, ray, rng);
     // Clamping trades bias for less variance; only on request, and counted.
     if (settings.clamp > 0 && L.max_component() > settings.clamp) {
