@@ -34,10 +34,13 @@ Color microfacet_f(const Material& m, const Vec3& wo, const Vec3& wi) {
 
 }  // namespace
 
+BSDF::BSDF(const Material& material, const Frame& frame, DiffuseRoutines diffuse)
+    : material_(&material), frame_(frame), diffuse_(diffuse), albedo_(material.albedo) {}
+
 Color BSDF::f(const Vec3& wo, const Vec3& wi) const {
     switch (material_->type) {
         case MaterialType::diffuse:
-            return diffuse_.f(material_->albedo, wo, wi);
+            return diffuse_.f(albedo_, wo, wi);
         case MaterialType::microfacet:
             return microfacet_f(*material_, wo, wi);
         case MaterialType::mirror:
@@ -80,7 +83,7 @@ int BSDF::delta_lobes(const Vec3& wo, DeltaLobe lobes[2]) const {
 BSDFSample BSDF::sample_f(const Vec3& wo, Vec2 u) const {
     switch (material_->type) {
         case MaterialType::diffuse:
-            return diffuse_.sample_f(material_->albedo, wo, u);
+            return diffuse_.sample_f(albedo_, wo, u);
         case MaterialType::microfacet: {
             BSDFSample s;
             if (wo.z <= 0) return s;

@@ -89,10 +89,13 @@ struct DiffuseRoutines {
 class BSDF {
   public:
     /// The BSDF of `material` at a point whose local shading frame is `frame`.
-    BSDF(const Material& material, const Frame& frame, DiffuseRoutines diffuse)
-        : material_(&material), frame_(frame), diffuse_(diffuse) {}
+    BSDF(const Material& material, const Frame& frame, DiffuseRoutines diffuse);
+    /// The same, with the diffuse albedo found at the point (a texture's value).
+    BSDF(const Material& material, const Frame& frame, DiffuseRoutines diffuse, const Color& albedo)
+        : material_(&material), frame_(frame), diffuse_(diffuse), albedo_(albedo) {}
     /// The BSDF keeps a pointer to its material: a temporary would dangle.
     BSDF(Material&& material, const Frame& frame, DiffuseRoutines diffuse) = delete;
+    BSDF(Material&& material, const Frame& frame, DiffuseRoutines diffuse, const Color& albedo) = delete;
 
     /// World-space direction to the local frame, and back.
     Vec3 to_local(const Vec3& w) const { return frame_.to_local(w); }
@@ -117,6 +120,7 @@ class BSDF {
     const Material* material_;  ///< never null
     Frame frame_;               ///< local shading frame; +z is the (oriented) shading normal
     DiffuseRoutines diffuse_;   ///< student or reference Lambertian routines
+    Color albedo_;              ///< diffuse reflectance at this point (the material's, or its texture's)
 };
 
 }  // namespace pt

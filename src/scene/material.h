@@ -5,9 +5,11 @@
 // docs/global.md ("Materials").
 #pragma once
 
+#include <memory>
 #include <string>
 
 #include "core/color.h"
+#include "scene/texture.h"
 
 namespace pt {
 
@@ -22,6 +24,7 @@ struct Material {
     std::string name;                       ///< the key in the scene's "materials", or "mesh.obj:mtlname"
     MaterialType type = MaterialType::diffuse;
     Color albedo{0.8, 0.8, 0.8};            ///< diffuse reflectance in [0, 1]
+    std::shared_ptr<const Texture> albedo_texture;  ///< diffuse reflectance varying with (u, v); null = `albedo`
     Color emission;                         ///< emitted radiance, W/(m^2 sr) in scene units; 0 = none
     Color reflectance{1, 1, 1};             ///< mirror and glass: tint of reflected light, [0, 1]
     Color transmittance{1, 1, 1};           ///< glass: tint of refracted light, [0, 1]
@@ -31,6 +34,8 @@ struct Material {
     Color k{9.22, 6.27, 4.84};              ///< microfacet: imaginary part (absorption) per channel
 
     bool is_emissive() const { return !emission.is_black(); }
+    /// The diffuse reflectance at surface coordinates uv (scene/texture.h).
+    Color albedo_at(Vec2 uv) const { return albedo_texture ? albedo_texture->evaluate(uv) : albedo; }
 };
 
 const char* to_string(MaterialType type);

@@ -1,5 +1,9 @@
 #include "scene/scene.h"
 
+#include <cmath>
+
+#include "core/math.h"
+
 namespace pt {
 
 const char* to_string(MaterialType type) {
@@ -29,6 +33,23 @@ Triangle Scene::triangle(uint32_t prim) const {
 
 const Material& Scene::material_of(uint32_t prim) const {
     return materials[is_sphere(prim) ? sphere_record(prim).material : triangles[prim].material];
+}
+
+Vec2 Scene::uv_at(uint32_t prim, double b1, double b2, const Vec3& p) const {
+    if (is_sphere(prim)) {
+        const Sphere& s = sphere_record(prim).sphere;
+        Vec3 d = (p - s.center) / s.radius;
+        double phi = std::atan2(d.x, d.z);
+        if (phi < 0) phi += kTwoPi;
+        return {phi * kInvTwoPi, 1.0 - std::acos(clamp(d.y, -1.0, 1.0)) * kInvPi};
+    }
+    if (prim < triangle_uvs.size() && triangle_uvs[prim][0] != kNoIndex) {
+        const std::array<uint32_t, 3>& t = triangle_uvs[prim];
+        const double b0 = 1.0 - b1 - b2;
+        return {b0 * uvs[t[0]].x + b1 * uvs[t[1]].x + b2 * uvs[t[2]].x,
+                b0 * uvs[t[0]].y + b1 * uvs[t[1]].y + b2 * uvs[t[2]].y};
+    }
+    return {b1 + b2, b2};
 }
 
 BBox Scene::primitive_bounds(uint32_t prim) const {

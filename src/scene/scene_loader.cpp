@@ -18,6 +18,7 @@
 #include "scene/mesh.h"
 #include "scene/microfacet.h"
 #include "scene/obj_loader.h"
+#include "scene/texture.h"
 
 namespace pt {
 namespace {
@@ -79,14 +80,45 @@ void read_camera(Scene& scene, const JsonReader& j) {
     if (c.far_clip <= c.near_clip) j.fail("far_clip", "expected far_clip > near_clip");
 }
 
-Material read_material(const std::string& name, const JsonReader& j) {
+/// A texture's (u, v) multiplier: a number, or [su, sv]; 1 by default.
+Vec2 read_uv_scale(const JsonReader& j) {
+    if (!j.has("scale")) return Vec2(1, 1);
+    if (!j.is_array("scale")) {
+        double s = j.positive("scale");
+        return Vec2(s, s);
+    }
+    std::vector<double> s = j.numbers("scale", 2);
+    if (!(s[0] > 0 && s[1] > 0)) j.fail("scale", "expected a number > 0 or two numbers > 0");
+    return Vec2(s[0], s[1]);
+}
+
+/// A diffuse albedo given as a texture (scene/texture.h):
+///   {"texture": "file.png", "scale": s}  or
+///   {"checkerboard": {"even": [r, g, b], "odd": [r, g, b]}, "scale": s}.
+std::shared_ptr<const Texture> read_albedo_texture(const JsonReader& j, const std::string& scene_path) {
+    j.allow_only({"texture", "checkerboard", "scale"});
+    Vec2 scale = read_uv_scale(j);
+    if (j.has("texture") == j.has("checkerboard"))
+        j.fail("", "expected either \"texture\" (an image file) or \"checkerboard\" (two colours)");
+    if (j.has("texture"))
+        return load_albedo_texture(resolve(scene_path, j.string("texture")), j.file() + ": " + j.path_of("texture"),
+                                   scale);
+    JsonReader board = j.object("checkerboard");
+    board.allow_only({"even", "odd"});
+    if (!board.has("even") || !board.has("odd")) board.fail("", "expected \"even\" and \"odd\" colours");
+    return std::make_shared<const CheckerboardTexture>(board.color("even", Color(0), 1.0), board.color("odd", Color(0), 1.0),
+                                                       scale);
+}
+
+Material read_material(const std::string& name, const JsonReader& j, const std::string& scene_path) {
     Material m;
     m.name = name;
     std::string type = j.string("type");
     if (type == "diffuse") {
         j.allow_only({"type", "albedo", "emission"});
         m.type = MaterialType::diffuse;
-        m.albedo = j.color("albedo", m.albedo, 1.0);
+        if (j.has("albedo") && !j.is_array("albedo")) m.albedo_texture = read_albedo_texture(j.object("albedo"), scene_path);
+        else m.albedo = j.color("albedo", m.albedo, 1.0);
     } else if (type == "mirror") {
         j.allow_only({"type", "reflectance", "emission"});
         m.type = MaterialType::mirror;
@@ -160,7 +192,7 @@ public:
         if (!root.has("materials")) return;
         for (const auto& [name, j] : root.object_map("materials")) {
             material_index_[name] = uint32_t(scene_.materials.size());
-            scene_.materials.push_back(read_material(name, j));
+            scene_.materials.push_back(read_material(name, j, path_));
         }
     }
 
@@ -198,6 +230,8 @@ public:
             MeshData mesh;
             mesh.positions = {c, c + e1, c + e1 + e2, c + e2};
             mesh.faces = {{0, 1, 2}, {0, 2, 3}};
+            mesh.uvs = {Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1)};  // (u, v) along (edge1, edge2)
+            mesh.face_uvs = {{0, 1, 2}, {0, 2, 3}};
             mesh.material = material(j);
             add_mesh(scene_, mesh, transform);
         } else if (type == "torus_knot") {

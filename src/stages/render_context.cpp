@@ -105,7 +105,11 @@ BSDF RenderContext::bsdf_at(const SurfaceInteraction& isect) const {
         Vec3 ng = dot(isect.ng, isect.wo) < 0 ? -isect.ng : isect.ng;
         if (dot(n, ng) < 0) n = -n;
     }
-    return BSDF(material, Frame(n), {stages.direct.diffuse_f, stages.direct.diffuse_sample_f});
+    // A textured albedo is looked up at the hit's (u, v) (scene/texture.h).
+    Color albedo = material.albedo_texture
+                       ? material.albedo_texture->evaluate(scene.uv_at(isect.primitive, isect.b1, isect.b2, isect.p))
+                       : material.albedo;
+    return BSDF(material, Frame(n), {stages.direct.diffuse_f, stages.direct.diffuse_sample_f}, albedo);
 }
 
 }  // namespace pt
