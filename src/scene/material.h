@@ -9,6 +9,7 @@
 #include <string>
 
 #include "core/color.h"
+#include "scene/microfacet_distribution.h"
 #include "scene/texture.h"
 
 namespace pt {
@@ -17,7 +18,8 @@ enum class MaterialType {
     diffuse,  ///< Lambertian: albedo
     mirror,   ///< perfect specular reflection: reflectance
     glass,    ///< smooth dielectric: ior, reflectance, transmittance
-    microfacet,  ///< rough conductor (GGX, Smith): roughness, eta, k
+    microfacet,  ///< rough conductor (GGX, Beckmann or Blinn-Phong; Smith): roughness, eta, k
+    rough_dielectric,  ///< rough glass (Walter et al. 2007): ior, roughness, reflectance, transmittance
 };
 
 struct Material {
@@ -28,8 +30,11 @@ struct Material {
     Color emission;                         ///< emitted radiance, W/(m^2 sr) in scene units; 0 = none
     Color reflectance{1, 1, 1};             ///< mirror and glass: tint of reflected light, [0, 1]
     Color transmittance{1, 1, 1};           ///< glass: tint of refracted light, [0, 1]
-    double ior = 1.5;                       ///< glass: index of refraction inside / outside
-    double roughness = 0.3;                 ///< microfacet: GGX alpha, in [0.001, 1] (0.001: almost a mirror)
+    double ior = 1.5;                       ///< glass, rough_dielectric: index of refraction inside / outside
+    double roughness = 0.3;                 ///< microfacet, rough_dielectric: alpha (along x when anisotropic), in [0.001, 1]
+    double roughness_y = -1;                ///< alpha along the second tangent (y); < 0: the same as `roughness`
+    MicrofacetModel distribution = MicrofacetModel::ggx;  ///< microfacet, rough_dielectric: the facet statistics
+    double exponent = 100;                  ///< Blinn-Phong exponent e >= 0 (distribution blinn_phong)
     Color eta{1.66, 0.88, 0.52};            ///< microfacet: real part of the conductor's IOR per channel
     Color k{9.22, 6.27, 4.84};              ///< microfacet: imaginary part (absorption) per channel
 

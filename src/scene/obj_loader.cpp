@@ -71,8 +71,10 @@ Material to_material(const tinyobj::material_t& m, const std::string& prefix, co
         mat.type = MaterialType::mirror;
         mat.reflectance = Color(m.specular[0], m.specular[1], m.specular[2]);
     } else if (m.illum == 4 || m.illum == 6 || m.illum == 7) {
-        mat.type = MaterialType::glass;
+        // Glass; with the PBR extension's roughness Pr > 0, rough glass of GGX alpha Pr.
+        mat.type = m.roughness > 0 ? MaterialType::rough_dielectric : MaterialType::glass;
         mat.ior = m.ior > 0 ? m.ior : 1.5;
+        mat.roughness = std::clamp(double(m.roughness), ggx::kMinAlpha, 1.0);
     } else if (m.metallic > 0) {
         // The PBR extension of MTL: Pm (metallic) > 0 makes a rough metal
         // whose colour at normal incidence is Kd and whose GGX alpha is Pr.

@@ -12,6 +12,7 @@ const char* to_string(MaterialType type) {
         case MaterialType::mirror: return "mirror";
         case MaterialType::glass: return "glass";
         case MaterialType::microfacet: return "microfacet";
+        case MaterialType::rough_dielectric: return "rough_dielectric";
     }
     return "unknown";
 }
@@ -50,6 +51,25 @@ Vec2 Scene::uv_at(uint32_t prim, double b1, double b2, const Vec3& p) const {
                 b0 * uvs[t[0]].y + b1 * uvs[t[1]].y + b2 * uvs[t[2]].y};
     }
     return {b1 + b2, b2};
+}
+
+Vec3 Scene::dpdu(uint32_t prim, const Vec3& p) const {
+    if (is_sphere(prim)) {
+        // The direction of growing longitude (uv_at's u) about +y.
+        Vec3 d = p - sphere_record(prim).sphere.center;
+        return Vec3(d.z, 0, -d.x);
+    }
+    Triangle t = triangle(prim);
+    Vec3 e1 = t.p1 - t.p0, e2 = t.p2 - t.p0;
+    if (prim < triangle_uvs.size() && triangle_uvs[prim][0] != kNoIndex) {
+        // Solve e1 = du1 dpdu + dv1 dpdv, e2 = du2 dpdu + dv2 dpdv for dpdu.
+        const std::array<uint32_t, 3>& uv = triangle_uvs[prim];
+        Vec2 d1(uvs[uv[1]].x - uvs[uv[0]].x, uvs[uv[1]].y - uvs[uv[0]].y);
+        Vec2 d2(uvs[uv[2]].x - uvs[uv[0]].x, uvs[uv[2]].y - uvs[uv[0]].y);
+        double det = d1.x * d2.y - d1.y * d2.x;
+        if (std::fabs(det) > 1e-12) return (e1 * d2.y - e2 * d1.y) / det;
+    }
+    return e1;
 }
 
 BBox Scene::primitive_bounds(uint32_t prim) const {

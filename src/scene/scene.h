@@ -52,6 +52,10 @@ struct Scene {
     /// (b1 + b2, b2) (pbrt's default (0,0), (1,0), (1,1) corners); on a sphere,
     /// u the longitude about +y from +z, v = 1 at the top pole, 0 at the bottom.
     Vec2 uv_at(uint32_t prim, double b1, double b2, const Vec3& p) const;
+    /// The surface's first tangent at p, dp/du (not unit): the x axis of an
+    /// anisotropic BSDF's frame. A triangle without texture coordinates
+    /// gives its first edge; a sphere the direction of growing longitude.
+    Vec3 dpdu(uint32_t prim, const Vec3& p) const;
     BBox primitive_bounds(uint32_t prim) const;
     double primitive_area(uint32_t prim) const;
     bool has_lights() const {

@@ -110,6 +110,33 @@ std::shared_ptr<const Texture> read_albedo_texture(const JsonReader& j, const st
                                                        scale);
 }
 
+/// The facets of a rough material: "distribution" (ggx, beckmann or
+/// blinn_phong), "roughness" alpha or [alpha_x, alpha_y] (anisotropic; GGX
+/// and Beckmann), or "exponent" (Blinn-Phong).
+void read_microfacet(const JsonReader& j, Material& m) {
+    std::string d = j.has("distribution") ? j.string("distribution") : "ggx";
+    if (d == "ggx") m.distribution = MicrofacetModel::ggx;
+    else if (d == "beckmann") m.distribution = MicrofacetModel::beckmann;
+    else if (d == "blinn_phong") m.distribution = MicrofacetModel::blinn_phong;
+    else j.fail("distribution", "unknown distribution \"" + d + "\" (expected ggx, beckmann or blinn_phong)");
+    if (m.distribution == MicrofacetModel::blinn_phong) {
+        if (j.has("roughness")) j.fail("roughness", "the blinn_phong distribution takes \"exponent\", not \"roughness\"");
+        m.exponent = j.number_in("exponent", 0, 1e6, m.exponent);
+        return;
+    }
+    if (j.has("exponent")) j.fail("exponent", "only the blinn_phong distribution takes an \"exponent\"");
+    if (j.has("roughness") && j.is_array("roughness")) {
+        std::vector<double> a = j.numbers("roughness", 2);
+        for (double v : a)
+            if (!(v >= ggx::kMinAlpha && v <= 1.0))
+                j.fail("roughness", "expected alpha or [alpha_x, alpha_y], each in [0.001, 1]");
+        m.roughness = a[0];
+        m.roughness_y = a[1];
+    } else {
+        m.roughness = j.number_in("roughness", ggx::kMinAlpha, 1.0, m.roughness);
+    }
+}
+
 Material read_material(const std::string& name, const JsonReader& j, const std::string& scene_path) {
     Material m;
     m.name = name;
@@ -130,9 +157,9 @@ Material read_material(const std::string& name, const JsonReader& j, const std::
         m.reflectance = j.color("reflectance", m.reflectance, 1.0);
         m.transmittance = j.color("transmittance", m.transmittance, 1.0);
     } else if (type == "microfacet") {
-        j.allow_only({"type", "roughness", "eta", "k", "reflectance", "emission"});
+        j.allow_only({"type", "roughness", "distribution", "exponent", "eta", "k", "reflectance", "emission"});
         m.type = MaterialType::microfacet;
-        m.roughness = j.number_in("roughness", ggx::kMinAlpha, 1.0, m.roughness);
+        read_microfacet(j, m);
         // A metal is given by its complex index (eta and k together) or by
         // its colour at normal incidence ("reflectance"), never both.
         bool has_index = j.has("eta") || j.has("k");
@@ -153,9 +180,16 @@ Material read_material(const std::string& name, const JsonReader& j, const std::
             j.fail("", "a microfacet material needs \"eta\" and \"k\" (the metal's complex index) or "
                        "\"reflectance\" (its colour)");
         }
+    } else if (type == "rough_dielectric") {
+        j.allow_only({"type", "ior", "roughness", "distribution", "exponent", "reflectance", "transmittance", "emission"});
+        m.type = MaterialType::rough_dielectric;
+        m.ior = j.positive("ior", 1.5);
+        read_microfacet(j, m);
+        m.reflectance = j.color("reflectance", m.reflectance, 1.0);
+        m.transmittance = j.color("transmittance", m.transmittance, 1.0);
     } else {
         j.fail("type", "unknown material type \"" + type +
-                           "\" (expected diffuse, mirror, glass or microfacet)");
+                           "\" (expected diffuse, mirror, glass, microfacet or rough_dielectric)");
     }
     m.emission = j.color("emission", Color(0));
     return m;

@@ -97,7 +97,8 @@ Color RenderContext::radiance(const Ray& ray, Rng& rng) const {
 BSDF RenderContext::bsdf_at(const SurfaceInteraction& isect) const {
     const Material& material = *isect.material;
     Vec3 n = isect.n;
-    if (material.type != MaterialType::glass) {
+    const bool keeps_normal = material.type == MaterialType::glass || material.type == MaterialType::rough_dielectric;
+    if (!keeps_normal) {
         // The side is the geometric normal's (the true surface); the shading
         // normal, which may disagree near silhouettes of smooth meshes or
         // when a mesh's vertex normals oppose its winding, is turned into
@@ -109,7 +110,11 @@ BSDF RenderContext::bsdf_at(const SurfaceInteraction& isect) const {
     Color albedo = material.albedo_texture
                        ? material.albedo_texture->evaluate(scene.uv_at(isect.primitive, isect.b1, isect.b2, isect.p))
                        : material.albedo;
-    return BSDF(material, Frame(n), {stages.direct.diffuse_f, stages.direct.diffuse_sample_f}, albedo);
+    // Anisotropic roughness needs the frame's x axis along the surface's u direction.
+    const bool anisotropic = material.roughness_y >= 0 && material.roughness_y != material.roughness &&
+                             (material.type == MaterialType::microfacet || keeps_normal);
+    Frame frame = anisotropic ? Frame::with_tangent(n, scene.dpdu(isect.primitive, isect.p)) : Frame(n);
+    return BSDF(material, frame, {stages.direct.diffuse_f, stages.direct.diffuse_sample_f}, albedo);
 }
 
 }  // namespace pt
