@@ -11,18 +11,15 @@ namespace {
 /// The fisheye film point (x, y) in units where the image circle has
 /// radius 1: the shorter side of the film spans [-1, 1].
 Vec2 fisheye_disk_point(const Camera& c, double x, double y) {
-    double sx = c.aspect >= 1 ? c.aspect : 1.0, sy = c.aspect >= 1 ? 1.0 : 1.0 / c.aspect;
-    return {(2.0 * x - 1.0) * sx, (2.0 * y - 1.0) * sy};
-}
-
-/// Image coordinates in [0, 1]^2 from the sensor-plane point s (z = -1) of a
-/// perspective camera, or nothing off the film.
-std::optional<Vec2> on_film(double u, double v) {
-    if (!(u >= 0 && u <= 1 && v >= 0 && v <= 1)) return std::nullopt;
-    return Vec2(u, v);
+    Vec2 s = fisheye_disk_scale(c);
+    return {(2.0 * x - 1.0) * s.x, (2.0 * y - 1.0) * s.y};
 }
 
 }  // namespace
+
+Vec2 fisheye_disk_scale(const Camera& c) {
+    return c.aspect >= 1 ? Vec2(c.aspect, 1.0) : Vec2(1.0, 1.0 / c.aspect);
+}
 
 const char* to_string(CameraType type) {
     switch (type) {
@@ -74,37 +71,6 @@ Ray fisheye_ray(const Camera& c, double x, double y, Vec2) {
     double sin_theta = std::sin(theta);
     Vec3 d = r > 0 ? Vec3(sin_theta * p.x / r, sin_theta * p.y / r, -std::cos(theta)) : Vec3(0, 0, -1);
     return Ray(c.position, c.to_world(d).unit(), c.near_clip, c.far_clip);
-}
-
-std::optional<Vec2> Camera::film_point(const Vec3& p, Vec2 lens) const {
-    Vec3 q = to_camera(p - position);
-    switch (type) {
-        case CameraType::perspective: {
-            if (!(q.z < 0)) return std::nullopt;  // behind the lens plane
-            // The ray from the lens point through q meets the plane of focus
-            // (z = -focal_distance) at f; the pinhole ray through f is the one
-            // generate_ray made for that film point (stages/camera.cpp).
-            double d = lens_radius > 0 ? focal_distance : 1.0;
-            Vec3 l(lens.x, lens.y, 0.0);
-            Vec3 f = l + (q - l) * (d / -q.z);
-            return on_film(0.5 * (f.x / d / tan_half_hfov + 1.0), 0.5 * (f.y / d / tan_half_vfov + 1.0));
-        }
-        case CameraType::orthographic:
-            if (!(q.z < 0)) return std::nullopt;
-            return on_film(0.5 * (q.x / (0.5 * height * aspect) + 1.0), 0.5 * (q.y / (0.5 * height) + 1.0));
-        case CameraType::fisheye: {
-            double len = q.norm();
-            if (!(len > 0)) return std::nullopt;
-            double theta = std::acos(clamp(-q.z / len, -1.0, 1.0));
-            double r = theta / (radians(fov) * 0.5);
-            if (r > 1.0) return std::nullopt;
-            double rho = std::hypot(q.x, q.y);
-            double px = rho > 0 ? r * q.x / rho : 0.0, py = rho > 0 ? r * q.y / rho : 0.0;
-            double sx = aspect >= 1 ? aspect : 1.0, sy = aspect >= 1 ? 1.0 : 1.0 / aspect;
-            return on_film(0.5 * (px / sx + 1.0), 0.5 * (py / sy + 1.0));
-        }
-    }
-    return std::nullopt;
 }
 
 }  // namespace pt

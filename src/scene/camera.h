@@ -26,10 +26,11 @@
 // t_max) sees nothing: RenderContext::radiance returns black for it.
 //
 // For bidirectional methods every type also answers the inverse question,
-// film_point: where a world point lands on the film.
+// where a ray from a point of the camera lands on the film
+// (camera_film_position, scene/camera_importance.h).
 //
 // Tests: tests/unit/test_camera.cpp (centre and corner rays by hand for
-// each type; film_point inverts the rays).
+// each type; camera_film_position inverts the rays).
 #pragma once
 
 #include <optional>
@@ -71,13 +72,6 @@ struct Camera {
     /// Camera-space vector to world space (rotation only), and back.
     Vec3 to_world(const Vec3& v) const { return right * v.x + true_up * v.y + backward * v.z; }
     Vec3 to_camera(const Vec3& w) const { return {dot(w, right), dot(w, true_up), dot(w, backward)}; }
-
-    /// Normalised image coordinates (x, y) in [0, 1]^2 (as generate_ray
-    /// takes them: (0, 0) bottom left) of the film point that sees world
-    /// point p, or nothing when no film point does (behind the camera,
-    /// outside the film or the fisheye's image circle). `lens` is the point
-    /// of a thin lens the light passes, camera-space (x, y) in scene units.
-    std::optional<Vec2> film_point(const Vec3& p, Vec2 lens = Vec2(0, 0)) const;
 };
 
 const char* to_string(CameraType type);
@@ -88,6 +82,10 @@ Ray orthographic_ray(const Camera& camera, double x, double y, Vec2 lens_sample)
 /// The camera ray of a fisheye camera through image point (x, y), or an
 /// empty ray (t_min > t_max) outside the image circle.
 Ray fisheye_ray(const Camera& camera, double x, double y, Vec2 lens_sample);
+
+/// Half the film's width and height in units of the fisheye's image-circle
+/// radius: (aspect, 1) for a wide film, (1, 1 / aspect) for a tall one.
+Vec2 fisheye_disk_scale(const Camera& camera);
 
 /// Whether a camera ray sees nothing (a film point outside the fisheye's circle).
 inline bool sees_nothing(const Ray& ray) { return !(ray.t_min <= ray.t_max); }

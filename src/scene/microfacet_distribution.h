@@ -17,11 +17,12 @@
 //                sampled by D(m) cos(theta_m) (Walter eq. 28; anisotropic as
 //                in pbrt-v3 section 8.4.3).
 //   blinn_phong  D = (e + 2) / (2 pi) cos^e(theta_m), the normalised Blinn-Phong
-//                lobe of exponent e (Walter eq. 30); isotropic. Its Smith
-//                shadowing has no closed form: Walter's, Beckmann's Lambda with
-//                alpha = sqrt(2 / (e + 2)) (the alpha whose Beckmann lobe the
-//                Phong lobe matches). Sampled by D(m) cos(theta_m):
-//                cos(theta_m) = u1^(1 / (e + 2)), phi = 2 pi u2 (Walter eq. 33).
+//                lobe of exponent e (Walter eq. 30); isotropic. Smith's Lambda
+//                exactly, through the incomplete beta function (derived in
+//                the .cpp; Walter's stand-in, Beckmann's Lambda at alpha =
+//                sqrt(2 / (e + 2)), gains energy at low exponents). Sampled by
+//                D(m) cos(theta_m): cos(theta_m) = u1^(1 / (e + 2)), phi = 2 pi u2
+//                (Walter eq. 33).
 //
 // Anisotropic roughness (ax != ay) stretches the lobe along the shading
 // frame's first tangent (x) and second (y); the renderer builds that frame
