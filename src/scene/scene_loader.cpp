@@ -13,6 +13,7 @@
 #include "core/files.h"
 #include "core/math.h"
 #include "image/image_io.h"
+#include "scene/framing.h"
 #include "scene/fresnel.h"
 #include "scene/json_reader.h"
 #include "scene/mesh.h"
@@ -235,21 +236,6 @@ private:
 
 }  // namespace
 
-void frame_camera_on(Camera& camera, const BBox& bounds) {
-    Vec3 center = bounds.centroid();
-    double radius = std::max(0.5 * bounds.extent().norm(), 1e-6);
-    // Fit the bounding sphere in the smaller of the two fields of view,
-    // looking from the front (+z) and a little above, as mesh viewers do.
-    double half_fov = radians(camera.vfov) * 0.5;
-    if (camera.aspect < 1) half_fov = std::atan(camera.aspect * std::tan(half_fov));
-    double distance = radius / std::sin(half_fov);
-    Vec3 direction = Vec3(0.0, 0.25, 1.0).unit();
-    camera.look_at = center;
-    camera.position = center + direction * distance;
-    camera.up = Vec3(0, 1, 0);
-    camera.focal_distance = 0;
-}
-
 Scene parse_json_scene(const std::string& text, const std::string& path) {
     nlohmann::json root_json;
     try {
@@ -288,7 +274,7 @@ Scene parse_json_scene(const std::string& text, const std::string& path) {
         read_camera(scene, root.object("camera"));
     } else {
         if (scene.primitive_count() == 0) root.fail("", "a scene without objects needs a \"camera\"");
-        frame_camera_on(scene.camera, scene.bounds);
+        frame_camera_on_scene(scene.camera, scene);
     }
     scene.camera.finalize(path + ": camera");
     return scene;
@@ -311,7 +297,7 @@ Scene load_obj_scene(const std::string& path) {
     add_mesh(scene, mesh, Transform());
     scene.finalize();
     scene.camera.aspect = double(scene.film_width) / scene.film_height;
-    frame_camera_on(scene.camera, scene.bounds);
+    frame_camera_on_scene(scene.camera, scene);
     scene.camera.finalize(path + ": camera");
     return scene;
 }
