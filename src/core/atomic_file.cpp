@@ -23,11 +23,23 @@ std::string folder_of(const std::string& path) {
     return dir.empty() ? "." : dir;
 }
 
+/// Device and process files (/dev/null, /dev/stdout, /proc/self/fd/1) are
+/// written in place and never resolved: a rename there is impossible, and
+/// following /dev/stdout to a redirected file would cut the shell's link to it.
+bool is_device_path(const std::string& path) { return path.rfind("/dev/", 0) == 0 || path.rfind("/proc/", 0) == 0; }
+
+/// True when a write to `target` goes through a temporary and a rename.
+bool is_replaceable(const std::string& target) {
+    struct stat st;
+    return !is_device_path(target) && (stat(target.c_str(), &st) != 0 || S_ISREG(st.st_mode));
+}
+
 /// The file a write to `path` lands in: symbolic links followed. Throws
 /// `fail(reason)` for a dangling link or a folder.
 template <typename Fail>
 std::string resolve_target(const std::string& path, Fail fail) {
     if (path.empty()) fail("empty file name");
+    if (is_device_path(path)) return path;
     struct stat st;
     if (lstat(path.c_str(), &st) == 0 && S_ISLNK(st.st_mode)) {
         char resolved[PATH_MAX];
@@ -36,11 +48,6 @@ std::string resolve_target(const std::string& path, Fail fail) {
     }
     if (stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode)) fail("is a folder");
     return path;
-}
-
-bool is_regular_or_missing(const std::string& path) {
-    struct stat st;
-    return stat(path.c_str(), &st) != 0 || S_ISREG(st.st_mode);
 }
 
 /// The permissions a plain fopen would give a new file (0666 minus umask);
@@ -69,7 +76,7 @@ int make_temp(const std::string& target, std::string* temp) {
 
 AtomicFile::AtomicFile(const std::string& path) : path_(path) {
     target_ = resolve_target(path, [&](const std::string& r) { fail(r); });
-    if (!is_regular_or_missing(target_)) {
+    if (!is_replaceable(target_)) {
         file_ = std::fopen(target_.c_str(), "wb");  // a device or fifo: write it directly
         if (!file_) fail(reason());
         return;
@@ -123,7 +130,7 @@ void check_output_path(const std::string& path, const std::string& what) {
         throw InputError(what + ": cannot write " + path + ": " + why);
     };
     std::string target = resolve_target(path, fail);
-    if (!is_regular_or_missing(target)) {
+    if (!is_replaceable(target)) {
         if (access(target.c_str(), W_OK) != 0) fail(reason());
         return;
     }

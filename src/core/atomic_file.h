@@ -15,9 +15,10 @@
 // InputError "cannot write PATH: REASON" is thrown (exit code 2 in the apps).
 //
 // - A symbolic link is followed: the file it points to is replaced, the link stays.
-// - A target that exists and is not a regular file (/dev/null, /dev/stdout,
-//   a fifo) is written directly, still checked: there is nothing to rename
-//   over. /dev/full therefore fails with "No space left on device".
+// - A target under /dev/ or /proc/, or one that is not a regular file (a
+//   fifo), is written in place, still checked: there is nothing to rename
+//   over (and /dev/stdout must stay the shell's redirection). /dev/full
+//   therefore fails with "No space left on device".
 // - Not fsync'ed: atomic against a killed process or a full disk, not
 //   against a power cut. A process killed mid-write leaves its ".NAME.XXXXXX"
 //   behind (the target itself is never truncated).

@@ -202,6 +202,14 @@ TEST_CASE("a symbolic link to an output is followed; new files get the usual per
     CHECK((st.st_mode & 0777) == (0666 & ~mask));
 }
 
+TEST_CASE("--stats /dev/stdout writes into the pipe, not over a file") {
+    std::string dir = scratch_dir("outputs_stdout");
+    CommandResult r = run(app("pathtracer", "-q -r 4 4 -f " + dir + "/x.png --stats /dev/stdout " + kScene) + " | cat", dir);
+    CHECK(r.exit_code == 0);
+    CHECK(contains(r.out, "\"program\": \"pathtracer\""));
+    CHECK(contains(r.out, "pathtracer: wrote " + dir + "/x.png"));
+}
+
 TEST_CASE("AtomicFile: the target changes only on commit, and a failed write names the file") {
     std::string base = scratch_dir("outputs_atomic_unit"), dir = base + "/files";
     REQUIRE(run("mkdir '" + dir + "'", base).exit_code == 0);

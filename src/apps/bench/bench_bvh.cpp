@@ -425,6 +425,14 @@ int run_bvh(const std::vector<std::string>& raw) {
     }
     if (a.has("--json")) check_output_path(a.get("--json", ""), "bvh: --json");
 
+    // A long run says so before it starts (issue 22: --shared took ten minutes without a word).
+    const double per_scene = (o.linear ? o.budget : 0) + (o.kernels ? 3 * o.kernel_seconds : 0);
+    if (double(scenes.size()) * per_scene > 120)
+        std::cerr << "bench bvh: " << scenes.size() << " scenes, each up to " << fixed(per_scene, 0)
+                  << " s (the linear scan up to --budget, 3 ray kernels of --kernel-seconds): up to "
+                  << fixed(double(scenes.size()) * per_scene / 60, 0)
+                  << " minutes; --no-linear, or --budget 5 --kernel-seconds 0.2, is quicker\n";
+
     std::vector<SceneResult> results;
     for (const std::string& path : scenes)
         results.push_back(measure_scene(path, o));
