@@ -15,7 +15,7 @@ into build/readme_images/, and compares them byte for byte with docs/images/. Pr
 limit the run (e.g. demo.png whitted.png); --update copies drifted renders into docs/images/.
 Not re-rendered: images that depend on timing (equal-time comparisons, accuracy plots),
 on a converged reference (the -l sequence) or on other tools (the x2..x16 brightened
-images, the grade report screenshot). About 3 minutes on 2 idle cores.
+images, the grade report screenshot). About 4 CPU-minutes: 2 minutes on 2 idle cores.
 USAGE
     exit 0 ;;
 esac
