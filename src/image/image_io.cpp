@@ -120,6 +120,12 @@ Image read_pfm(const std::string& path) {
     in.get();  // the single whitespace character after the scale
     int channels = magic == "PF" ? 3 : 1;
     size_t row = size_t(w) * channels;
+    // The header may promise 50 GB: check the file holds the pixels before allocating them.
+    std::streampos data_start = in.tellg();
+    in.seekg(0, std::ios::end);
+    if (!in || uint64_t(in.tellg() - data_start) < uint64_t(row) * uint64_t(h) * sizeof(float))
+        throw InputError(path + ": PFM pixel data is truncated");
+    in.seekg(data_start);
     std::vector<float> raw(row * h);
     in.read(reinterpret_cast<char*>(raw.data()), std::streamsize(raw.size() * sizeof(float)));
     if (in.gcount() != std::streamsize(raw.size() * sizeof(float)))

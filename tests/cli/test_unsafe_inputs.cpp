@@ -78,12 +78,16 @@ TEST_CASE("face indices that overflow an int are errors, not other vertices") {
 TEST_CASE("scene and mesh files are size-checked before they are read") {
     std::string dir = scratch_dir("unsafe_sizes");
     // Sparse 2 GB files: they take no disk space, and would take 4 GB of
-    // memory if read whole.
+    // memory if read whole (ulimit -v: more than 1 GB would fail the test).
     REQUIRE(run("truncate -s 2G '" + dir + "/big.json' '" + dir + "/big.obj'", dir).exit_code == 0);
     expect_error(render(dir, "big.json", "ulimit -v 1000000 && "),
                  "scene: big.json is 2147483648 bytes; a scene file (meshes go in OBJ files) is at most 67108864 bytes");
     expect_error(render(dir, "big.obj", "ulimit -v 1000000 && "),
                  "big.obj: line 1 is longer than 1048576 bytes (not an OBJ file?)");
+    // A PFM header that promises 65536 x 65536 pixels (48 GB) in a 20-byte file.
+    write_file(dir + "/huge.pfm", "PF\n65536 65536\n-1.0\n");
+    expect_error(render(dir, "-e huge.pfm " + source_path("assets/scenes/cbox.json"), "ulimit -v 1000000 && "),
+                 "huge.pfm: PFM pixel data is truncated");
 }
 
 TEST_CASE("the triangle limit comes from the machine's memory, and the message says it") {
