@@ -1,7 +1,6 @@
 #include "image/exr_io.h"
 
 #include <tinyexr.h>
-#include <unistd.h>
 
 #include <cerrno>
 #include <cmath>
@@ -10,8 +9,10 @@
 #include <cstring>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 
 namespace pt {
@@ -26,22 +27,6 @@ std::string take_message(const char* message) {
     std::string s = message ? message : "unknown error";
     if (message) FreeEXRErrorMessage(message);
     return s;
-}
-
-/// Writes `bytes` to `path` through a temporary file in the same folder and
-/// a rename, so that a reader never sees half a file and a failed write
-/// leaves the old file (if any) in place.
-void write_file_atomically(const unsigned char* bytes, size_t size, const std::string& path) {
-    std::string temporary = path + ".tmp" + std::to_string(long(getpid()));
-    std::FILE* f = std::fopen(temporary.c_str(), "wb");
-    if (!f) throw InputError("cannot write " + path + ": " + std::strerror(errno));
-    bool ok = std::fwrite(bytes, 1, size, f) == size;
-    ok = (std::fclose(f) == 0) && ok;
-    if (!ok || std::rename(temporary.c_str(), path.c_str()) != 0) {
-        std::string reason = std::strerror(errno);
-        std::remove(temporary.c_str());
-        throw InputError("cannot write " + path + ": " + reason);
-    }
 }
 
 }  // namespace
@@ -90,7 +75,7 @@ void write_exr(const Image& image, const std::string& path) {
     size_t size = SaveEXRImageToMemory(&exr_image, &header, &memory, &message);
     if (size == 0 || !memory) throw InputError("cannot write " + path + ": OpenEXR encoder: " + take_message(message));
     std::unique_ptr<unsigned char, void (*)(void*)> guard(memory, std::free);
-    write_file_atomically(memory, size, path);
+    write_file_atomically(path, std::string_view(reinterpret_cast<const char*>(memory), size));
 }
 
 Image read_exr(const std::string& path) {

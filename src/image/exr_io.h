@@ -22,7 +22,8 @@
 
 namespace pt {
 
-/// Writes `image` (linear RGB) as a float OpenEXR file; throws InputError.
+/// Writes `image` (linear RGB) as a float OpenEXR file, through the checked,
+/// atomic writer (core/atomic_file.h); throws InputError.
 void write_exr(const Image& image, const std::string& path);
 
 /// Reads an OpenEXR file into linear RGB; throws InputError.

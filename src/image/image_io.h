@@ -7,7 +7,9 @@
 //   HDR  Radiance RGBE (environment maps), via stb_image and stb_image_write.
 //   EXR  OpenEXR, 32-bit float, linear (image/exr_io.h, tinyexr).
 //
-// Every failure throws InputError naming the file and the reason.
+// Every failure throws InputError naming the file and the reason. Every
+// write is checked and atomic (core/atomic_file.h): a failed or interrupted
+// write leaves the old file as it was.
 #pragma once
 
 #include <string>
