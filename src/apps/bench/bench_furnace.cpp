@@ -74,7 +74,7 @@ int run_furnace(const std::vector<std::string>& args) {
                         Vec3 wo(std::sqrt(1 - c * c), 0, side * c);
                         auto [mean, error] = albedo(m, wo, samples, ++seed);
                         (void)error;
-                        std::printf(" %.1f |", 100.0 * (1.0 - mean));
+                        std::printf(" %.1f |", 100.0 * (1.0 - mean) + 0.0);  // + 0.0: no "-0.0"
                     }
                     std::printf("\n");
                 }
