@@ -36,6 +36,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "core/hash.h"
@@ -125,10 +126,13 @@ public:
 private:
     DigitPermutation(int base, uint64_t seed, bool random) : base_(base), digits_(radical_inverse_digits(base)) {
         table_.resize(size_t(base_) * size_t(digits_));
-        for (int k = 0; k < digits_; ++k)
-            for (int d = 0; d < base_; ++d)
-                table_[size_t(k) * size_t(base_) + size_t(d)] = uint16_t(
-                    random ? permute_index(uint32_t(d), uint32_t(base_), hash_values(seed, uint64_t(k))) : uint32_t(d));
+        for (int k = 0; k < digits_; ++k) {
+            uint16_t* p = &table_[size_t(k) * size_t(base_)];
+            for (int d = 0; d < base_; ++d) p[d] = uint16_t(d);
+            // Fisher-Yates: every permutation equally likely (up to the hash).
+            for (int j = base_ - 1; random && j > 0; --j)
+                std::swap(p[j], p[hash_values(seed, uint64_t(k), uint64_t(j)) % uint64_t(j + 1)]);
+        }
         powers_.assign(size_t(digits_) + 1, 1);
         for (int n = 1; n <= digits_; ++n) powers_[size_t(n)] = powers_[size_t(n) - 1] * uint64_t(base_);
         zero_tails_.assign(size_t(digits_) + 1, 0);

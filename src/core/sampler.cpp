@@ -11,7 +11,7 @@
 namespace pt {
 namespace {
 
-constexpr int kHaltonDimensions = 256;     // primes with a digit permutation; later dimensions are padded
+constexpr int kHaltonDimensions = 128;     // primes with a digit permutation; later dimensions are padded
 constexpr uint32_t kHaltonMaxResolution = 128;  // the pixel tile of pbrt-v4's HaltonSampler
 
 std::vector<int> first_primes(int count) {

@@ -39,7 +39,7 @@
 // shuffled per dimension and a scramble per dimension (Burley 2020,
 // "Practical Hash-based Owen Scrambling"; pbrt-v4 PaddedSobolSampler):
 // each draw is a scrambled (0,2)-sequence on its own, decorrelated from the
-// others. Halton pads past its 256th prime with independent values.
+// others. Halton pads past its 128th prime (719) with independent values.
 //
 // Tests: tests/unit/test_sampler.cpp (determinism, one sample per stratum,
 // uniformity by chi-square, the pixel mapping of the global samplers),
