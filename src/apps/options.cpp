@@ -1,5 +1,6 @@
 #include "apps/options.h"
 
+#include <algorithm>
 #include <functional>
 #include <sstream>
 #include <thread>
@@ -145,6 +146,11 @@ Options parse_options(const std::vector<std::string>& args, StageSet default_stu
             o.scene_path = arg;
         }
     }
+    // A student sampler stage (part6) runs only with a sampler that calls
+    // it: stratified unless --sampler says otherwise.
+    if (o.student.contains(Stage::sampler) &&
+        std::find(args.begin(), args.end(), std::string("--sampler")) == args.end())
+        o.render.sampler = SamplerKind::stratified;
     if (o.help) return o;
     if (o.scene_path.empty()) throw InputError("no scene given (usage: [options] SCENE.json|MESH.obj; see --help)");
     if (!o.output.empty()) {
@@ -184,7 +190,8 @@ std::string usage(const std::string& program, StageSet default_student) {
       << "  --bvh-split sah|median|middle, --max-leaf N                            [sah, 4]\n"
       << "  --bvh-view PATH highlight the BVH node at PATH (L/R steps from the root)\n"
       << "  --bvh-depth-image FILE.png  also write a heat map of BVH nodes visited per pixel\n"
-      << "  --sampler independent|stratified|halton|sobol|zsobol                   [" << to_string(kDefaultSampler) << "]\n"
+      << "  --sampler independent|stratified|halton|sobol|zsobol                   ["
+      << (default_student.contains(Stage::sampler) ? "stratified" : to_string(kDefaultSampler)) << "]\n"
       << "  --adaptive split|cs184  stopping rule of -a: split (unbiased) or Part 5's  [split]\n"
       << "\nexit codes: 0 ok, 1 failure, 2 bad input, 3 a student stage is not implemented yet\n";
     return s.str();
