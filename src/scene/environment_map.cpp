@@ -74,6 +74,20 @@ double EnvironmentMap::pdf(const Vec3& w) const {
     return distribution_.pdf(uv) / (2 * kPi * kPi * sin_theta);
 }
 
+Color EnvironmentMap::integral() const {
+    // A pixel of row y spans theta in [pi y / H, pi (y + 1) / H] and 2 pi / W
+    // in phi: solid angle (2 pi / W) (cos theta_top - cos theta_bottom).
+    Color sum;
+    const int w = image_.width(), h = image_.height();
+    for (int y = 0; y < h; ++y) {
+        double solid_angle = kTwoPi / w * (std::cos(kPi * y / h) - std::cos(kPi * (y + 1) / h));
+        Color row;
+        for (int x = 0; x < w; ++x) row += image_.at(x, y);
+        sum += row * solid_angle;
+    }
+    return sum;
+}
+
 Image make_sky_image(int width, int height, double sun_elevation, double sun_azimuth) {
     Image sky(width, height);
     double el = radians(sun_elevation), az = radians(sun_azimuth);

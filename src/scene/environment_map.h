@@ -39,6 +39,9 @@ public:
     Sample sample(Vec2 u) const;
     /// Solid-angle density with which sample() picks `w`.
     double pdf(const Vec3& w) const;
+    /// The integral of Le over the sphere of directions, W/m^2 (exact for
+    /// the piecewise-constant map: each pixel's radiance times its solid angle).
+    Color integral() const;
 
     const Image& image() const { return image_; }
 

@@ -1,5 +1,9 @@
 #include "scene/light_set.h"
 
+#include <algorithm>
+#include <cmath>
+
+#include "scene/interaction.h"
 #include "scene/lights.h"
 #include "scene/scene.h"
 
@@ -63,6 +67,43 @@ LightSet::LightSet(const Scene& scene) {
         int32_t index = add(make_environment_light(*scene.environment, scene.bounds));
         environment_ = lights_[size_t(index)].get();
     }
+
+    // Light selection by power (for light subpaths and photons).
+    double total = 0;
+    for (size_t i = 0; i < lights_.size(); ++i) {
+        const Light* light = lights_[i].get();
+        index_.emplace(light, i);
+        double y = light->power().luminance();
+        power_probability_.push_back(y > 0 && std::isfinite(y) ? y : 0.0);
+        total += power_probability_.back();
+    }
+    for (double& p : power_probability_)
+        p = total > 0 ? p / total : 1.0 / double(lights_.size());
+    double sum = 0;
+    for (double p : power_probability_)
+        power_cdf_.push_back(sum += p);
+    if (!power_cdf_.empty()) power_cdf_.back() = 1.0;
+}
+
+const Light* LightSet::sample_by_power(double u, double* probability) const {
+    if (lights_.empty()) {
+        if (probability) *probability = 0;
+        return nullptr;
+    }
+    size_t i = size_t(std::upper_bound(power_cdf_.begin(), power_cdf_.end(), u) - power_cdf_.begin());
+    i = std::min(i, lights_.size() - 1);
+    while (i > 0 && !(power_probability_[i] > 0)) --i;  // a zero-width step, reached by rounding
+    if (probability) *probability = power_probability_[i];
+    return lights_[i].get();
+}
+
+double LightSet::power_probability(const Light* light) const {
+    auto it = index_.find(light);
+    return it == index_.end() ? 0.0 : power_probability_[it->second];
+}
+
+Ray LightEmission::ray() const {
+    return Ray(offset_ray_origin(p, p_error, n.norm2() > 0 ? n : w, w), w, kSpawnTMin, kInfinity);
 }
 
 const Light* LightSet::light_of_primitive(uint32_t prim) const {

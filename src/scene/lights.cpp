@@ -31,7 +31,24 @@ struct FarAway {
     Vec3 point(const Vec3& p, const Vec3& w) const {
         return p + w * (2.0 * (radius + (p - center).norm()));
     }
+    /// A point uniform on the disk of radius `radius` that faces the
+    /// travel direction w and touches the bounding sphere on the side the
+    /// light comes from: every ray from it along w crosses the whole scene.
+    Vec3 disk_point(const Vec3& w, Vec2 u) const {
+        Frame frame(w);
+        Vec2 d = sample_concentric_disk(u);
+        return center - w * radius + (frame.s * d.x + frame.t * d.y) * radius;
+    }
+    double disk_pdf() const { return 1.0 / (kPi * radius * radius); }
 };
+
+/// A cosine-weighted direction about the unit normal n (an area light's
+/// emission, Lambertian), with its solid-angle density.
+Vec3 sample_cosine_about(const Vec3& n, Vec2 u, double* pdf) {
+    Vec3 local = sample_cosine_hemisphere(u);
+    *pdf = cosine_hemisphere_pdf(local.z);
+    return Frame(n).to_world(local);
+}
 
 class TriangleLight final : public Light {
   public:
@@ -51,35 +68,42 @@ class TriangleLight final : public Light {
 
     LightSample sample_Li(const LightSampleContext& ref, Vec2 u) const override {
         if (triangles_.empty()) return {};
-        // Pick a triangle with probability area / total area, then reuse what
-        // is left of u.x (rescaled to [0, 1)) to place the point in it: the
-        // product is uniform over the whole light, pdf_A = 1 / area_.
-        size_t k = size_t(std::upper_bound(cdf_.begin(), cdf_.end(), u.x) - cdf_.begin());
-        k = std::min(k, triangles_.size() - 1);
-        double lo = k == 0 ? 0.0 : cdf_[k - 1];
-        double width = cdf_[k] - lo;
-        double ux = width > 0 ? std::min((u.x - lo) / width, 0x1.fffffffffffffp-1) : 0.0;
-        const Tri& t = triangles_[k];
-        Vec2 b = sample_uniform_triangle({ux, u.y});
-        double b0 = 1.0 - b.x - b.y;
-        Vec3 p = b0 * t.p0 + b.x * t.p1 + b.y * t.p2;
-        // Error bound of barycentric interpolation (pbrt-v3 section 3.9.3).
-        Vec3 p_error = gamma(7) * (abs(b0 * t.p0) + abs(b.x * t.p1) + abs(b.y * t.p2));
-
-        Vec3 d = p - ref.p;
+        Point q = sample_point(u);
+        Vec3 d = q.p - ref.p;
         double r2 = d.norm2();
         if (!(r2 > 0)) return {};  // the shading point is on the light
         Vec3 wi = d / std::sqrt(r2);
-        double cos_light = -dot(t.n, wi);
+        double cos_light = -dot(q.n, wi);
         if (!(cos_light > 0)) return {};  // the back of a one-sided light, or edge-on
         LightSample s;
         s.pdf = r2 / (cos_light * area_);  // pdf_A = 1 / area, to solid angle
         if (!std::isfinite(s.pdf)) return {};
         s.L = Le_;
         s.wi = wi;
-        s.p = offset_ray_origin(p, p_error, t.n, -d);
+        s.p = offset_ray_origin(q.p, q.p_error, q.n, -d);
         return s;
     }
+
+    LightEmission sample_Le(Vec2 u_pos, Vec2 u_dir) const override {
+        if (triangles_.empty()) return {};
+        Point q = sample_point(u_pos);
+        LightEmission e;
+        e.p = q.p;
+        e.p_error = q.p_error;
+        e.n = q.n;
+        e.w = sample_cosine_about(q.n, u_dir, &e.pdf_dir);
+        e.pdf_pos = 1.0 / area_;
+        e.Le = Le_;
+        return e;
+    }
+
+    LightEmissionPdf pdf_Le(const Vec3&, const Vec3& n, const Vec3& w) const override {
+        if (!(area_ > 0)) return {};
+        return {1.0 / area_, cosine_hemisphere_pdf(dot(n, w))};
+    }
+
+    Color power() const override { return Le_ * (kPi * area_); }
+    LightKind kind() const override { return LightKind::area; }
 
     double pdf_Li(const LightSampleContext& ref, const Vec3& wi, const Vec3& p_light,
                   const Vec3& n_light) const override {
@@ -94,6 +118,30 @@ class TriangleLight final : public Light {
         Vec3 p0, p1, p2;  ///< corners, world space
         Vec3 n;           ///< unit geometric normal, the emitting side
     };
+    struct Point {
+        Vec3 p, p_error, n;
+    };
+
+    /// A point uniform by area on the light: a triangle picked with
+    /// probability area / total area, then what is left of u.x (rescaled to
+    /// [0, 1)) places the point in it, so pdf_A = 1 / area_ over the whole light.
+    Point sample_point(Vec2 u) const {
+        size_t k = size_t(std::upper_bound(cdf_.begin(), cdf_.end(), u.x) - cdf_.begin());
+        k = std::min(k, triangles_.size() - 1);
+        double lo = k == 0 ? 0.0 : cdf_[k - 1];
+        double width = cdf_[k] - lo;
+        double ux = width > 0 ? std::min((u.x - lo) / width, 0x1.fffffffffffffp-1) : 0.0;
+        const Tri& t = triangles_[k];
+        Vec2 b = sample_uniform_triangle({ux, u.y});
+        double b0 = 1.0 - b.x - b.y;
+        Point q;
+        q.p = b0 * t.p0 + b.x * t.p1 + b.y * t.p2;
+        // Error bound of barycentric interpolation (pbrt-v3 section 3.9.3).
+        q.p_error = gamma(7) * (abs(b0 * t.p0) + abs(b.x * t.p1) + abs(b.y * t.p2));
+        q.n = t.n;
+        return q;
+    }
+
     std::vector<Tri> triangles_;
     std::vector<double> cdf_;  ///< cumulative area fractions; the last is 1
     double area_ = 0;          ///< total area, scene units^2
@@ -122,7 +170,29 @@ class SphereLight final : public Light {
         return sphere_cap_pdf(sphere_.center, sphere_.radius, ref.p);
     }
 
+    LightEmission sample_Le(Vec2 u_pos, Vec2 u_dir) const override {
+        // Uniform over the whole sphere (a light subpath may start anywhere
+        // on it), cosine-weighted about the outward normal.
+        LightEmission e;
+        e.n = sample_uniform_sphere(u_pos);
+        e.p = sphere_.center + e.n * sphere_.radius;
+        e.p_error = gamma(6) * (abs(e.p) + abs(sphere_.center));
+        e.w = sample_cosine_about(e.n, u_dir, &e.pdf_dir);
+        e.pdf_pos = 1.0 / area();
+        e.Le = Le_;
+        return e;
+    }
+
+    LightEmissionPdf pdf_Le(const Vec3&, const Vec3& n, const Vec3& w) const override {
+        return {1.0 / area(), cosine_hemisphere_pdf(dot(n, w))};
+    }
+
+    Color power() const override { return Le_ * (kPi * area()); }
+    LightKind kind() const override { return LightKind::area; }
+
   private:
+    double area() const { return 4.0 * kPi * sphere_.radius * sphere_.radius; }
+
     Sphere sphere_;
     Color Le_;  ///< emitted radiance, W/(m^2 sr)
 };
@@ -148,6 +218,21 @@ class PointLightSource final : public Light {
     }
     bool is_delta() const override { return true; }
 
+    LightEmission sample_Le(Vec2, Vec2 u_dir) const override {
+        LightEmission e;
+        e.p = light_.position;
+        e.w = sample_uniform_sphere(u_dir);
+        e.Le = light_.intensity;
+        e.pdf_pos = 1.0;  // a delta in position
+        e.pdf_dir = uniform_sphere_pdf();
+        return e;
+    }
+    LightEmissionPdf pdf_Le(const Vec3&, const Vec3&, const Vec3&) const override {
+        return {0.0, uniform_sphere_pdf()};
+    }
+    Color power() const override { return light_.intensity * (4.0 * kPi); }
+    LightKind kind() const override { return LightKind::point; }
+
   private:
     PointLight light_;
 };
@@ -170,6 +255,22 @@ class DirectionalLightSource final : public Light {
         return 0.0;
     }
     bool is_delta() const override { return true; }
+
+    LightEmission sample_Le(Vec2 u_pos, Vec2) const override {
+        LightEmission e;
+        e.w = light_.direction;
+        e.p = far_.disk_point(e.w, u_pos);
+        e.n = e.w;
+        e.Le = light_.irradiance;
+        e.pdf_pos = far_.disk_pdf();
+        e.pdf_dir = 1.0;  // a delta in direction
+        return e;
+    }
+    LightEmissionPdf pdf_Le(const Vec3&, const Vec3&, const Vec3&) const override {
+        return {far_.disk_pdf(), 0.0};
+    }
+    Color power() const override { return light_.irradiance / far_.disk_pdf(); }
+    LightKind kind() const override { return LightKind::directional; }
 
   private:
     DirectionalLight light_;
@@ -210,6 +311,22 @@ class ConstantEnvironmentLight final : public Light {
 
     Color Le(const Vec3&) const override { return radiance_; }
 
+    LightEmission sample_Le(Vec2 u_pos, Vec2 u_dir) const override {
+        LightEmission e;
+        e.w = -sample_uniform_sphere(u_dir);  // travelling away from the sky direction drawn
+        e.p = far_.disk_point(e.w, u_pos);
+        e.n = e.w;
+        e.Le = radiance_;
+        e.pdf_pos = far_.disk_pdf();
+        e.pdf_dir = uniform_sphere_pdf();
+        return e;
+    }
+    LightEmissionPdf pdf_Le(const Vec3&, const Vec3&, const Vec3&) const override {
+        return {far_.disk_pdf(), uniform_sphere_pdf()};
+    }
+    Color power() const override { return radiance_ * (4.0 * kPi / far_.disk_pdf()); }
+    LightKind kind() const override { return LightKind::environment; }
+
   private:
     Color radiance_;  ///< W/(m^2 sr), the same from every direction
     FarAway far_;
@@ -241,6 +358,24 @@ class EnvironmentMapLight final : public Light {
     }
 
     Color Le(const Vec3& direction) const override { return map_.Le(unit(direction)); }
+
+    LightEmission sample_Le(Vec2 u_pos, Vec2 u_dir) const override {
+        EnvironmentMap::Sample m = map_.sample(u_dir);
+        if (!(m.pdf > 0) || !std::isfinite(m.pdf)) return {};
+        LightEmission e;
+        e.w = -m.wi;  // the ray travels from the sky into the scene
+        e.p = far_.disk_point(e.w, u_pos);
+        e.n = e.w;
+        e.Le = m.L;
+        e.pdf_pos = far_.disk_pdf();
+        e.pdf_dir = m.pdf;
+        return e;
+    }
+    LightEmissionPdf pdf_Le(const Vec3&, const Vec3&, const Vec3& w) const override {
+        return {far_.disk_pdf(), map_.pdf(unit(-w))};
+    }
+    Color power() const override { return map_.integral() / far_.disk_pdf(); }
+    LightKind kind() const override { return LightKind::environment; }
 
   private:
     /// w / |w|, but w itself when it is unit already: renormalising would move
