@@ -130,10 +130,10 @@ TEST_CASE("convergence rates of every sampler on a smooth pixel integral and on 
         for (bool edge : {false, true}) {
             RateFit fit = measure(t.kind, edge, 2026);
             const double theory = edge ? t.edge : t.smooth;
-            INFO(std::string(to_string(t.kind)) << (edge ? " edge" : " smooth") << ": slope " << fit.slope << ", theory " << theory
+            INFO(std::string(to_string(t.kind)) << std::string(edge ? " edge" : " smooth") << ": slope " << fit.slope << ", theory " << theory
                                    << ", MSE at 4 and 256: " << fit.mse.front() << ", " << fit.mse.back());
             if (std::getenv("PT_RATES_VERBOSE"))
-                MESSAGE(std::string(to_string(t.kind)) << (edge ? " edge" : " smooth") << ": slope " << fit.slope);
+                MESSAGE(std::string(to_string(t.kind)) << std::string(edge ? " edge" : " smooth") << ": slope " << fit.slope);
             CHECK(std::fabs(fit.slope - theory) <= 0.15);
         }
     }
