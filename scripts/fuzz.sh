@@ -4,6 +4,15 @@
 # Usage: scripts/fuzz.sh [SECONDS=60]. New interesting inputs are left in
 # build-fuzz/corpus; copy the small ones worth keeping to tests/fuzz/corpus.
 set -euo pipefail
+case "${1:-}" in
+  -h|--help)
+    cat <<'USAGE'
+usage: scripts/fuzz.sh [SECONDS=60]
+Fuzzes the scene and OBJ loaders with libFuzzer (clang, ASan, UBSan) for SECONDS, from
+tests/fuzz/corpus; new inputs are left in build-fuzz/corpus.
+USAGE
+    exit 0 ;;
+esac
 cd "$(dirname "$0")/.."
 seconds=${1:-60}
 scripts/setup.sh clang libclang-rt-14-dev

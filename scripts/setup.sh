@@ -3,6 +3,17 @@
 # As root it runs apt-get; otherwise it prints the exact command and stops.
 # Usage: scripts/setup.sh [extra packages...]
 set -euo pipefail
+case "${1:-}" in
+  -h|--help)
+    cat <<'USAGE'
+usage: scripts/setup.sh [EXTRA_PACKAGE...]
+Installs the missing Debian 12 packages the project builds with (cmake g++ make libstb-dev
+libtinyobjloader-dev doctest-dev nlohmann-json3-dev, and any given). As root it runs apt-get,
+first waiting up to 10 minutes for another apt (unattended-upgrades) to release its lock;
+otherwise it prints the sudo apt-get command and exits 1.
+USAGE
+    exit 0 ;;
+esac
 
 packages=(cmake g++ make libstb-dev libtinyobjloader-dev doctest-dev nlohmann-json3-dev "$@")
 missing=()
@@ -14,8 +25,13 @@ done
 if [ "$(id -u)" -eq 0 ]; then
   echo "setup: installing ${missing[*]}"
   export DEBIAN_FRONTEND=noninteractive
-  apt-get update -qq
-  apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+  # On a fresh machine unattended-upgrades often holds apt's lock for
+  # minutes: wait for it and say so, instead of failing with apt's raw
+  # message. DPkg::Lock::Timeout covers a lock taken between the two steps.
+  lock_wait=600
+  "$(dirname "$0")/wait_for_apt_lock.sh" "$lock_wait"
+  apt-get -o DPkg::Lock::Timeout="$lock_wait" update -qq
+  apt-get -o DPkg::Lock::Timeout="$lock_wait" install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 else
   echo "setup: missing Debian packages. Install them with:" >&2
   echo "    sudo apt-get install ${missing[*]}" >&2

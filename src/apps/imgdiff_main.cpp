@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "apps/number_flags.h"
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "image/colormap.h"
 #include "image/image_io.h"
@@ -127,9 +128,29 @@ std::string format_psnr(double psnr) {
     return buf;
 }
 
+/// PNG holds display values (sRGB-encoded, clamped to [0, 1]); PFM holds
+/// linear radiance, unclamped. Both are compared as linear values, but a
+/// clamped PNG against an unclamped PFM differs wherever radiance exceeds 1.
+void warn_if_kinds_differ(const std::string& a, const std::string& b) {
+    auto kind = [](const std::string& path) {
+        return file_extension(path) == ".png" ? "an sRGB PNG (clamped to [0, 1])" : "a linear PFM (unclamped)";
+    };
+    if (file_extension(a) == file_extension(b)) return;
+    std::cerr << "imgdiff: warning: " << a << " is " << kind(a) << " but " << b << " is " << kind(b)
+              << ": values above 1 differ by design; compare two PNGs or two PFMs (pathtracer --hdr "
+                 "writes the PFM)\n";
+}
+
 int compare_pair(const ImgdiffOptions& o) {
+    if (!o.heatmap.empty()) {
+        if (file_extension(o.heatmap) != ".png")
+            throw InputError("--heatmap: expected a .png file name");
+        refuse_overwriting_input(o.heatmap, "--heatmap", o.paths);
+        check_output_path(o.heatmap, "--heatmap");
+    }
     Image a = read_checked(o.paths[0]);
     Image b = read_checked(o.paths[1]);
+    warn_if_kinds_differ(o.paths[0], o.paths[1]);
     require_same_size(a, b, o.paths[0] + " and " + o.paths[1]);
     ImageMetrics m = compare_images(a, b, o.threshold);
     std::printf("imgdiff: %s against reference %s, %dx%d\n", o.paths[0].c_str(), o.paths[1].c_str(),
@@ -141,8 +162,6 @@ int compare_pair(const ImgdiffOptions& o) {
     std::printf("  pixels over %-6g %.3f%% (%zu of %zu)\n", m.threshold, 100.0 * m.share_over,
                 m.pixels_over, a.pixel_count());
     if (!o.heatmap.empty()) {
-        if (file_extension(o.heatmap) != ".png")
-            throw InputError("--heatmap: expected a .png file name");
         write_png(error_heatmap(a, b), o.heatmap);
         std::printf("  heat map           %s (per-pixel relMSE, viridis, log scale 1e-4 .. 1)\n",
                     o.heatmap.c_str());
@@ -183,6 +202,8 @@ int compare_dirs(const ImgdiffOptions& o) {
         fs::create_directories(o.heatmap_dir, ec);
         if (!fs::is_directory(o.heatmap_dir))
             throw InputError("--heatmap-dir: cannot create " + o.heatmap_dir);
+        // Heat maps are named like the images: in an input folder they would replace them.
+        refuse_overwriting_input(o.heatmap_dir, "--heatmap-dir", {da, db});
     }
     size_t width = 8;
     for (const std::string& n : all)
@@ -203,9 +224,8 @@ int compare_dirs(const ImgdiffOptions& o) {
             require_same_size(x, y, name);
             ImageMetrics m = compare_images(x, y, o.threshold);
             if (!o.heatmap_dir.empty()) {
-                std::string stem = fs::path(name).stem().string();
-                write_png(error_heatmap(x, y),
-                          (fs::path(o.heatmap_dir) / (stem + ".png")).string());
+                std::string heatmap = (fs::path(o.heatmap_dir) / (fs::path(name).stem().string() + ".png")).string();
+                write_png(error_heatmap(x, y), heatmap);
             }
             std::string over = over_limit(m, o);
             char size[32], share[32];

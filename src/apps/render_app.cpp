@@ -1,14 +1,12 @@
 #include "apps/render_app.h"
 
-#include <unistd.h>
-
 #include <cstdio>
-#include <fstream>
 #include <iostream>
 
 #include <nlohmann/json.hpp>
 
 #include "apps/options.h"
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/files.h"
 #include "core/progress.h"
@@ -26,19 +24,20 @@
 namespace pt {
 namespace {
 
-std::string directory_of(const std::string& path) {
-    size_t slash = path.find_last_of('/');
-    return slash == std::string::npos ? "." : (slash == 0 ? "/" : path.substr(0, slash));
-}
-
-/// Fails before rendering, not after, when an output cannot be written.
-void check_writable(const std::string& path, const std::string& flag) {
-    if (path.empty()) return;
-    std::string dir = directory_of(path);
-    if (access(dir.c_str(), W_OK) != 0)
-        throw InputError(flag + ": cannot write " + path + ": directory '" + dir + "' does not exist or is not writable");
-    if (access(path.c_str(), F_OK) == 0 && access(path.c_str(), W_OK) != 0)
-        throw InputError(flag + ": cannot write " + path + ": permission denied");
+/// Fails before rendering, not after, when an output cannot be written or
+/// would replace one of the inputs (the scene, the environment map).
+void check_outputs(const Options& options, const Scene& scene) {
+    std::vector<std::string> inputs = {options.scene_path, options.environment_map};
+    if (scene.environment) inputs.push_back(scene.environment->file);
+    std::vector<std::pair<std::string, std::string>> outputs = {
+        {options.output, "-f"}, {options.hdr_output, "--hdr"}, {options.stats_output, "--stats"},
+        {options.bvh_depth_image, "--bvh-depth-image"}};
+    if (options.render.adaptive) outputs.push_back({rate_image_path(options.output), "-a (sample-rate image)"});
+    for (const auto& [path, flag] : outputs) {
+        if (path.empty()) continue;
+        refuse_overwriting_input(path, flag, inputs);
+        check_output_path(path, flag);
+    }
 }
 
 /// Applies the flags that change the scene: resolution, lens, environment map.
@@ -66,6 +65,15 @@ void apply_scene_overrides(Scene& scene, const Options& options) {
             throw InputError("-p: the cell does not fit in the " + std::to_string(scene.film_width) + "x" +
                              std::to_string(scene.film_height) + " image");
     }
+}
+
+/// True when no pixel received any light. With lights in the scene that is
+/// almost always a camera that sees only the backs of things (issue 22: an
+/// auto-framed cbox.obj used to render black without a word).
+bool every_pixel_black(const Image& image) {
+    for (float v : image.data())
+        if (v != 0) return false;
+    return true;
 }
 
 struct PhaseSeconds {
@@ -131,9 +139,7 @@ void write_stats(const std::string& path, const std::string& program, const Opti
                          {"mean_spp", double(total) / double(std::max<size_t>(counts.size(), 1))},
                          {"sample_counts", rows}};
     }
-    std::ofstream out(path);
-    if (!out) throw InputError("--stats: cannot write " + path);
-    out << j.dump(2) << "\n";
+    write_file_atomically(path, j.dump(2) + "\n");
 }
 
 /// Traces the camera rays once more, one per pixel centre, counting the BVH
@@ -175,10 +181,7 @@ int run(const std::vector<std::string>& args, const std::string& program, StageS
     Scene scene = load_scene(options.scene_path);
     apply_scene_overrides(scene, options);
     if (options.output.empty()) options.output = scene.name + ".png";
-    check_writable(options.output, "-f");
-    check_writable(options.hdr_output, "--hdr");
-    check_writable(options.stats_output, "--stats");
-    check_writable(options.bvh_depth_image, "--bvh-depth-image");
+    check_outputs(options, scene);
     seconds.load = timer.seconds();
 
     Stages stages = make_stages(options.student, options.triangle_test == "watertight" ? TriangleTest::watertight
@@ -248,6 +251,10 @@ int run(const std::vector<std::string>& args, const std::string& program, StageS
     std::cout << program << ": wrote " << written << "\n" << program << ": " << line << "\n";
     if (c.nonfinite_samples > 0)
         std::cout << program << ": warning: " << c.nonfinite_samples << " NaN/Inf samples were dropped\n";
+    if (!options.cell && scene.has_lights() && every_pixel_black(result.image))
+        std::cout << program << ": warning: every pixel is black although the scene has lights: the camera may "
+                  << "see only the backs of surfaces or the outside of a closed box (check the camera, -m, "
+                  << "or the direction of the mesh's normals)\n";
     if (c.clamped_samples > 0)
         std::cout << program << ": note: --clamp scaled down " << c.clamped_samples
                   << " samples (biased: the image is darker than the true mean)\n";

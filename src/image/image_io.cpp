@@ -13,6 +13,7 @@
 #include <sstream>
 #include <vector>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "image/tonemap.h"
 
@@ -21,7 +22,7 @@ namespace {
 
 std::string system_reason() { return std::strerror(errno); }
 
-void check_writable(const Image& image, const std::string& path) {
+void check_not_empty(const Image& image, const std::string& path) {
     if (image.empty()) throw InputError(path + ": cannot write an empty image");
 }
 
@@ -36,40 +37,49 @@ std::string file_extension(const std::string& path) {
     return ext;
 }
 
+namespace {
+
+/// stb's encoders hand their output to a callback; collect it, then write it
+/// with the checked, atomic writer (core/atomic_file.h).
+void append_bytes(void* context, void* data, int size) {
+    static_cast<std::string*>(context)->append(static_cast<const char*>(data), size_t(size));
+}
+
+}  // namespace
+
 void write_png(const Image& image, const std::string& path) {
-    check_writable(image, path);
+    check_not_empty(image, path);
     std::vector<uint8_t> bytes(image.pixel_count() * 3);
     const std::vector<float>& data = image.data();
     for (size_t i = 0; i < bytes.size(); ++i) bytes[i] = to_srgb8(data[i]);
-    // stb reports failure without a reason; probe the path first for one.
-    std::FILE* probe = std::fopen(path.c_str(), "wb");
-    if (!probe) throw InputError("cannot write " + path + ": " + system_reason());
-    std::fclose(probe);
-    if (!stbi_write_png(path.c_str(), image.width(), image.height(), 3, bytes.data(), image.width() * 3))
+    AtomicFile file(path);  // fails now, before encoding, on a path it cannot write
+    std::string encoded;
+    if (!stbi_write_png_to_func(append_bytes, &encoded, image.width(), image.height(), 3, bytes.data(),
+                                image.width() * 3))
         throw InputError("cannot write " + path + ": PNG encoder failed");
+    file.write(encoded);
+    file.commit();
 }
 
 void write_pfm(const Image& image, const std::string& path) {
-    check_writable(image, path);
-    std::FILE* f = std::fopen(path.c_str(), "wb");
-    if (!f) throw InputError("cannot write " + path + ": " + system_reason());
-    std::unique_ptr<std::FILE, int (*)(std::FILE*)> guard(f, std::fclose);
+    check_not_empty(image, path);
+    AtomicFile file(path);
     // Negative scale means little-endian, which is what x86 and ARM store.
-    std::fprintf(f, "PF\n%d %d\n-1.0\n", image.width(), image.height());
+    file.write("PF\n" + std::to_string(image.width()) + " " + std::to_string(image.height()) + "\n-1.0\n");
     const std::vector<float>& data = image.data();
     size_t row = size_t(image.width()) * 3;
-    for (int y = image.height() - 1; y >= 0; --y)
-        if (std::fwrite(&data[size_t(y) * row], sizeof(float), row, f) != row)
-            throw InputError("cannot write " + path + ": " + system_reason());
+    for (int y = image.height() - 1; y >= 0; --y) file.write(&data[size_t(y) * row], row * sizeof(float));
+    file.commit();
 }
 
 void write_hdr(const Image& image, const std::string& path) {
-    check_writable(image, path);
-    std::FILE* probe = std::fopen(path.c_str(), "wb");
-    if (!probe) throw InputError("cannot write " + path + ": " + system_reason());
-    std::fclose(probe);
-    if (!stbi_write_hdr(path.c_str(), image.width(), image.height(), 3, image.data().data()))
+    check_not_empty(image, path);
+    AtomicFile file(path);
+    std::string encoded;
+    if (!stbi_write_hdr_to_func(append_bytes, &encoded, image.width(), image.height(), 3, image.data().data()))
         throw InputError("cannot write " + path + ": HDR encoder failed");
+    file.write(encoded);
+    file.commit();
 }
 
 void write_image(const Image& image, const std::string& path) {
@@ -110,6 +120,12 @@ Image read_pfm(const std::string& path) {
     in.get();  // the single whitespace character after the scale
     int channels = magic == "PF" ? 3 : 1;
     size_t row = size_t(w) * channels;
+    // The header may promise 50 GB: check the file holds the pixels before allocating them.
+    std::streampos data_start = in.tellg();
+    in.seekg(0, std::ios::end);
+    if (!in || uint64_t(in.tellg() - data_start) < uint64_t(row) * uint64_t(h) * sizeof(float))
+        throw InputError(path + ": PFM pixel data is truncated");
+    in.seekg(data_start);
     std::vector<float> raw(row * h);
     in.read(reinterpret_cast<char*>(raw.data()), std::streamsize(raw.size() * sizeof(float)));
     if (in.gcount() != std::streamsize(raw.size() * sizeof(float)))

@@ -6,7 +6,9 @@
 //        rows stored bottom to top (Debevec's HDRShop convention).
 //   HDR  Radiance RGBE (environment maps), via stb_image and stb_image_write.
 //
-// Every failure throws InputError naming the file and the reason.
+// Every failure throws InputError naming the file and the reason. Every
+// write is checked and atomic (core/atomic_file.h): a failed or interrupted
+// write leaves the old file as it was.
 #pragma once
 
 #include <string>

@@ -1,6 +1,7 @@
 #include "scene/json_reader.h"
 
 #include <cmath>
+#include <set>
 #include <sstream>
 
 #include "core/error.h"
@@ -171,6 +172,75 @@ Color JsonReader::color(const std::string& key, const Color& fallback, double ma
         }
     }
     return {v[0], v[1], v[2]};
+}
+
+namespace {
+
+/// Where the parser is, as the JsonReader paths spell it ("objects[2].radius"),
+/// kept from the parser's events: each open object knows its keys so far.
+class JsonPathTracker {
+public:
+    explicit JsonPathTracker(std::string file) : file_(std::move(file)) {}
+
+    bool on_event(json::parse_event_t event, const json& parsed) {
+        using E = json::parse_event_t;
+        if (event == E::object_start || event == E::array_start || event == E::value) enter_value();
+        if (event == E::object_start || event == E::array_start) stack_.push_back(Level{event == E::object_start, {}, {}, -1});
+        if (event == E::object_end || event == E::array_end) stack_.pop_back();
+        if (event == E::key) {
+            Level& object = stack_.back();
+            object.key = parsed.get<std::string>();
+            if (!object.keys.insert(object.key).second) {
+                std::string where = path();
+                throw InputError(file_ + ": " + (where.empty() ? "top level" : where) + ": duplicate key \"" +
+                                 object.key + "\" (a JSON object takes each key once)");
+            }
+        }
+        return true;
+    }
+
+private:
+    struct Level {
+        bool object;
+        std::set<std::string> keys;
+        std::string key;   ///< the current key, in an object
+        long index = -1;   ///< the current element, in an array
+    };
+
+    void enter_value() {
+        if (!stack_.empty() && !stack_.back().object) ++stack_.back().index;
+    }
+
+    /// The path of the current key's parent object.
+    std::string path() const {
+        std::string p;
+        for (size_t i = 0; i + 1 < stack_.size(); ++i) {
+            const Level& l = stack_[i];
+            if (l.object) p += (p.empty() ? "" : ".") + l.key;
+            else p += "[" + std::to_string(l.index) + "]";
+        }
+        return p;
+    }
+
+    std::string file_;
+    std::vector<Level> stack_;
+};
+
+}  // namespace
+
+json parse_json_strictly(const std::string& text, const std::string& file) {
+    JsonPathTracker tracker(file);
+    try {
+        return json::parse(text, [&](int, json::parse_event_t event, json& parsed) {
+            return tracker.on_event(event, parsed);
+        });
+    } catch (const json::exception& e) {
+        // Syntax errors and number overflow (1e999); nlohmann's message
+        // already carries "at line L, column C" where it applies.
+        std::string what = e.what();
+        size_t colon = what.find(": ");
+        throw InputError(file + ": malformed JSON: " + (colon == std::string::npos ? what : what.substr(colon + 2)));
+    }
 }
 
 }  // namespace pt

@@ -64,4 +64,10 @@ private:
 /// The JSON type name of a value for error messages ("a string", "an array").
 std::string describe_json(const nlohmann::json& v);
 
+/// Parses a JSON document strictly: a syntax error, or a key given twice in
+/// one object (nlohmann's parser silently keeps the last), throws InputError
+/// "file: malformed JSON: ..." or "file: materials.white: duplicate key
+/// \"albedo\"".
+nlohmann::json parse_json_strictly(const std::string& text, const std::string& file);
+
 }  // namespace pt

@@ -1,5 +1,6 @@
 #include "scene/obj_loader.h"
 
+#include <sys/stat.h>
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
@@ -8,44 +9,79 @@
 #include <cstring>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "core/error.h"
 #include "core/files.h"
+#include "core/memory_budget.h"
 #include "scene/fresnel.h"
 #include "scene/microfacet.h"
+#include "scene/obj_scan.h"
 #include "scene/scene.h"
 
 namespace pt {
 namespace {
 
-/// tinyobjloader reads a coordinate it cannot parse ("nan", "1.2.3") as 0
-/// without a word; a mesh with a silently moved vertex is worse than an
-/// error, so every number on v, vn and vt lines is checked first.
-void check_vertex_numbers(const std::string& path, const std::string& where) {
-    std::ifstream in(path);
-    std::string line;
-    for (int number = 1; std::getline(in, line); ++number) {
-        std::istringstream fields(line);
-        std::string keyword, token;
-        fields >> keyword;
-        if (keyword != "v" && keyword != "vn" && keyword != "vt") continue;
-        while (fields >> token) {
+/// An MTL file larger than this is not a material library (a typical one is
+/// a few kilobytes; 16 MiB is thousands of materials).
+constexpr uint64_t kMaxMtlBytes = 16 << 20;
+
+/// Reads the OBJ's material libraries for tinyobjloader, with the checks its
+/// own reader skips (issue 22): a regular file of bounded size (mtllib
+/// /dev/zero grew memory without bound, a fifo hung), and an index of
+/// refraction Ni that is a finite number >= 0 (a negative one silently
+/// became 1.5). Remembers which materials gave Ni.
+class CheckedMaterialReader : public tinyobj::MaterialReader {
+public:
+    CheckedMaterialReader(std::string directory, std::string where)
+        : directory_(std::move(directory)), where_(std::move(where)) {}
+
+    bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
+                    std::map<std::string, int>* names, std::string* warn, std::string* err) override {
+        const std::string path = name.empty() || name[0] != '/' ? directory_ + name : name;
+        struct stat st;
+        if (stat(path.c_str(), &st) != 0 && errno == ENOENT)
+            throw InputError(where_ + ": material library '" + name + "' not found (" + path + ")");
+        std::istringstream text(read_small_file(path, where_ + ": mtllib", kMaxMtlBytes, "a material library"));
+        check_ior(text.str(), path);
+        tinyobj::LoadMtl(names, materials, &text, warn, err);
+        return true;
+    }
+
+    bool has_ior(const std::string& material) const { return with_ior_.count(material) > 0; }
+
+private:
+    void check_ior(const std::string& text, const std::string& path) {
+        std::istringstream lines(text);
+        std::string line, material;
+        for (int number = 1; std::getline(lines, line); ++number) {
+            std::istringstream fields(line);
+            std::string keyword, value, extra;
+            fields >> keyword;
+            if (keyword == "newmtl") fields >> material;
+            if (keyword != "Ni") continue;
+            fields >> value;
             char* end = nullptr;
-            double value = std::strtod(token.c_str(), &end);
-            if (*end != '\0' || !std::isfinite(value))
-                throw InputError(where + ": line " + std::to_string(number) + ": '" + token +
-                                 "' is not a finite number (in a '" + keyword + "' line)");
+            double ior = std::strtod(value.c_str(), &end);
+            if (value.empty() || *end != '\0' || (fields >> extra) || !std::isfinite(ior) || ior < 0)
+                throw InputError(where_ + ": " + path + ": line " + std::to_string(number) + ": Ni (index of refraction of '" +
+                                 material + "') must be a finite number >= 0, got '" + value + "'");
+            with_ior_.insert(material);
         }
     }
-}
+
+    std::string directory_, where_;
+    std::set<std::string> with_ior_;
+};
 
 std::string base_name(const std::string& path) {
     size_t slash = path.find_last_of('/');
     return slash == std::string::npos ? path : path.substr(slash + 1);
 }
 
-Material to_material(const tinyobj::material_t& m, const std::string& prefix) {
+Material to_material(const tinyobj::material_t& m, const std::string& prefix, bool has_ior,
+                     const std::string& where) {
     Material mat;
     mat.name = prefix + m.name;
     mat.albedo = Color(m.diffuse[0], m.diffuse[1], m.diffuse[2]);
@@ -55,7 +91,11 @@ Material to_material(const tinyobj::material_t& m, const std::string& prefix) {
         mat.reflectance = Color(m.specular[0], m.specular[1], m.specular[2]);
     } else if (m.illum == 4 || m.illum == 6 || m.illum == 7) {
         mat.type = MaterialType::glass;
-        mat.ior = m.ior > 0 ? m.ior : 1.5;
+        // Without Ni, glass is 1.5 (tinyobjloader would say 1, which is no glass at all).
+        mat.ior = has_ior ? m.ior : 1.5;
+        if (!(mat.ior > 0))
+            throw InputError(where + ": material '" + m.name + "': glass (illum " + std::to_string(m.illum) +
+                             ") needs Ni > 0, got " + std::to_string(m.ior));
     } else if (m.metallic > 0) {
         // The PBR extension of MTL: Pm (metallic) > 0 makes a rough metal
         // whose colour at normal incidence is Kd and whose GGX alpha is Pr.
@@ -86,9 +126,11 @@ MeshData read_obj(Scene& scene, const std::string& path, const ObjLoadOptions& o
     std::vector<tinyobj::shape_t> shapes;
     std::vector<tinyobj::material_t> materials;
     std::string warn, err;
-    check_vertex_numbers(path, where);
-    bool ok = tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, path.c_str(),
-                               (directory_of(path).empty() ? std::string("./") : directory_of(path)).c_str(), /*triangulate=*/true);
+    ObjCounts counts = scan_obj(path, where);
+    check_geometry_budget(scene.triangles.size() + counts.triangles, scene.positions.size() + counts.vertices, where);
+    std::ifstream obj(path, std::ios::binary);
+    CheckedMaterialReader mtl_reader(directory_of(path), where);
+    bool ok = tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, &obj, &mtl_reader, /*triangulate=*/true);
     if (!ok) throw InputError(where + ": not a readable OBJ file: " + (err.empty() ? warn : err));
     // tinyobjloader only warns about a missing material library; a scene
     // whose colours silently vanish is worse than an error.
@@ -115,7 +157,7 @@ MeshData read_obj(Scene& scene, const std::string& path, const ObjLoadOptions& o
     std::vector<uint32_t> scene_material(materials.size());
     if (!options.material) {
         for (size_t m = 0; m < materials.size(); ++m) {
-            Material mat = to_material(materials[m], base_name(path) + ":");
+            Material mat = to_material(materials[m], base_name(path) + ":", mtl_reader.has_ior(materials[m].name), where);
             check_material(mat, where);
             scene_material[m] = uint32_t(scene.materials.size());
             scene.materials.push_back(mat);

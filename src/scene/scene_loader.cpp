@@ -12,7 +12,9 @@
 #include "core/error.h"
 #include "core/files.h"
 #include "core/math.h"
+#include "core/memory_budget.h"
 #include "image/image_io.h"
+#include "scene/framing.h"
 #include "scene/fresnel.h"
 #include "scene/json_reader.h"
 #include "scene/mesh.h"
@@ -22,8 +24,7 @@
 namespace pt {
 namespace {
 
-/// Limits that keep a typo from asking for terabytes.
-constexpr int kMaxGeneratedTriangles = 1 << 25;  // 33.5 million
+/// Limits that keep a typo from asking for terabytes (geometry: core/memory_budget.h).
 constexpr int kMaxFilmPixels = 1 << 26;          // e.g. 8192 x 8192
 
 std::string resolve(const std::string& scene_path, const std::string& file) {
@@ -38,13 +39,11 @@ std::string stem(const std::string& path) {
     return dot == std::string::npos ? name : name.substr(0, dot);
 }
 
+/// A scene is a few kilobytes of JSON; its meshes are separate OBJ files.
+constexpr uint64_t kMaxSceneBytes = 64 << 20;
+
 std::string read_text(const std::string& path) {
-    require_readable_file(path, "scene");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError("cannot read " + path + ": " + std::strerror(errno));
-    std::stringstream buffer;
-    buffer << in.rdbuf();
-    return buffer.str();
+    return read_small_file(path, "scene", kMaxSceneBytes, "a scene file (meshes go in OBJ files)");
 }
 
 void read_camera(Scene& scene, const JsonReader& j) {
@@ -187,9 +186,9 @@ public:
         } else if (type == "torus_knot") {
             j.allow_only({"type", "p", "q", "radius", "tube_radius", "segments", "sides", "material", "transform"});
             int segments = j.integer("segments", 3, 1 << 22, 500), sides = j.integer("sides", 3, 1 << 16, 10);
-            if (2.0 * segments * sides > kMaxGeneratedTriangles)
-                j.fail("", "2 * segments * sides must be at most " + std::to_string(kMaxGeneratedTriangles) +
-                               " triangles");
+            check_geometry_budget(scene_.triangles.size() + 2 * uint64_t(segments) * uint64_t(sides),
+                                  scene_.positions.size() + uint64_t(segments) * uint64_t(sides),
+                                  j.file() + ": " + j.path_of("") + " (2 * segments * sides)");
             MeshData mesh = make_torus_knot(j.integer("p", 1, 64, 2), j.integer("q", 1, 64, 3),
                                             j.positive("radius", 1.0), j.positive("tube_radius", 0.15), segments, sides);
             mesh.material = material(j);
@@ -235,32 +234,8 @@ private:
 
 }  // namespace
 
-void frame_camera_on(Camera& camera, const BBox& bounds) {
-    Vec3 center = bounds.centroid();
-    double radius = std::max(0.5 * bounds.extent().norm(), 1e-6);
-    // Fit the bounding sphere in the smaller of the two fields of view,
-    // looking from the front (+z) and a little above, as mesh viewers do.
-    double half_fov = radians(camera.vfov) * 0.5;
-    if (camera.aspect < 1) half_fov = std::atan(camera.aspect * std::tan(half_fov));
-    double distance = radius / std::sin(half_fov);
-    Vec3 direction = Vec3(0.0, 0.25, 1.0).unit();
-    camera.look_at = center;
-    camera.position = center + direction * distance;
-    camera.up = Vec3(0, 1, 0);
-    camera.focal_distance = 0;
-}
-
 Scene parse_json_scene(const std::string& text, const std::string& path) {
-    nlohmann::json root_json;
-    try {
-        root_json = nlohmann::json::parse(text);
-    } catch (const nlohmann::json::exception& e) {
-        // Syntax errors and number overflow (1e999); nlohmann's message
-        // already carries "at line L, column C" where it applies.
-        std::string what = e.what();
-        size_t colon = what.find(": ");
-        throw InputError(path + ": malformed JSON: " + (colon == std::string::npos ? what : what.substr(colon + 2)));
-    }
+    nlohmann::json root_json = parse_json_strictly(text, path);
     JsonReader root(root_json, path, "");
     root.allow_only({"description", "camera", "film", "materials", "objects", "lights"});
 
@@ -288,7 +263,7 @@ Scene parse_json_scene(const std::string& text, const std::string& path) {
         read_camera(scene, root.object("camera"));
     } else {
         if (scene.primitive_count() == 0) root.fail("", "a scene without objects needs a \"camera\"");
-        frame_camera_on(scene.camera, scene.bounds);
+        frame_camera_on_scene(scene.camera, scene);
     }
     scene.camera.finalize(path + ": camera");
     return scene;
@@ -311,7 +286,7 @@ Scene load_obj_scene(const std::string& path) {
     add_mesh(scene, mesh, Transform());
     scene.finalize();
     scene.camera.aspect = double(scene.film_width) / scene.film_height;
-    frame_camera_on(scene.camera, scene.bounds);
+    frame_camera_on_scene(scene.camera, scene);
     scene.camera.finalize(path + ": camera");
     return scene;
 }

@@ -17,8 +17,4 @@ Scene load_obj_scene(const std::string& path);
 /// Parses a scene from JSON text; `path` names it in errors and anchors relative paths.
 Scene parse_json_scene(const std::string& text, const std::string& path);
 
-/// Places `camera` so that a sphere around `bounds` fills the view: used for
-/// bare OBJ files and by tools that render a mesh without a scene file.
-void frame_camera_on(Camera& camera, const BBox& bounds);
-
 }  // namespace pt

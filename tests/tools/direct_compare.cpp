@@ -19,10 +19,12 @@
 //    each, seed 1): time, rays and relMSE; writes OUT_PREFIX_l<N>.png.
 // Output is a Markdown table per part.
 #include <cstdio>
-#include <cstdlib>
 #include <memory>
 #include <string>
+#include <vector>
 
+#include "apps/number_flags.h"
+#include "core/error.h"
 #include "core/timer.h"
 #include "image/image_io.h"
 #include "image/metrics.h"
@@ -88,39 +90,53 @@ Image crop(const Image& image, int x, int y, int size) {
     return out;
 }
 
-}  // namespace
+const char* kUsage =
+    "usage: direct_compare SCENE.json REFERENCE.pfm OUT_PREFIX [--size N] [--budget SECONDS]\n"
+    "                      [--threads T] [--crop X Y SIZE] [--sequence-pngs 0|1]\n"
+    "Equal-time and equal-sample comparison of the direct-light strategies against a\n"
+    "converged REFERENCE.pfm of the same scene, size and -m 1 (docs/direct.md).\n"
+    "Defaults: --size 256 --budget 4 --threads 2, the whole image, --sequence-pngs 1.\n"
+    "exit codes: 0 ok, 1 failure, 2 bad input\n";
 
-int main(int argc, char** argv) {
-    if (argc < 4) {
-        std::fprintf(
-            stderr,
-            "usage: %s SCENE.json REFERENCE.pfm OUT_PREFIX [--size N] [--budget S] [--threads T]\n",
-            argv[0]);
-        return 2;
-    }
+int run(const std::vector<std::string>& args) {
+    std::vector<std::string> positional;
     Setup s;
-    s.scene = load_scene(argv[1]);
-    Image reference = read_pfm(argv[2]);
-    std::string prefix = argv[3];
     int size = 256, crop_x = 0, crop_y = 0, crop_size = 0;
     double budget = 4.0;
     bool sequence_pngs = true;
-    for (int i = 4; i + 1 < argc; i += 2) {
-        std::string flag = argv[i];
-        if (flag == "--size")
-            size = std::atoi(argv[i + 1]);
-        else if (flag == "--budget")
-            budget = std::atof(argv[i + 1]);
-        else if (flag == "--threads")
-            s.threads = std::atoi(argv[i + 1]);
-        else if (flag == "--sequence-pngs")
-            sequence_pngs = std::atoi(argv[i + 1]) != 0;
-        else if (flag == "--crop" && i + 3 < argc) {
-            crop_x = std::atoi(argv[i + 1]), crop_y = std::atoi(argv[i + 2]),
-            crop_size = std::atoi(argv[i + 3]);
-            i += 2;
+    for (size_t i = 0; i < args.size(); ++i) {
+        const std::string& a = args[i];
+        auto value = [&]() -> const std::string& {
+            if (i + 1 >= args.size()) throw InputError(a + ": expected a value after it");
+            return args[++i];
+        };
+        if (a == "-h" || a == "--help") {
+            std::fputs(kUsage, stdout);
+            return kExitOk;
+        } else if (a == "--size") {
+            size = int(parse_whole_number(a, value(), 1, 1 << 14));
+        } else if (a == "--budget") {
+            budget = parse_real_number(a, value(), 0, 1e6, true);
+        } else if (a == "--threads") {
+            s.threads = int(parse_whole_number(a, value(), 1, 4096));
+        } else if (a == "--sequence-pngs") {
+            sequence_pngs = parse_whole_number(a, value(), 0, 1) == 1;
+        } else if (a == "--crop") {
+            crop_x = int(parse_whole_number(a + " (x)", value(), 0, 1 << 14));
+            crop_y = int(parse_whole_number(a + " (y)", value(), 0, 1 << 14));
+            crop_size = int(parse_whole_number(a + " (size)", value(), 1, 1 << 14));
+        } else if (a.size() > 1 && a[0] == '-') {
+            throw InputError(a + ": unknown option (direct_compare --help)");
+        } else {
+            positional.push_back(a);
         }
     }
+    if (positional.size() != 3)
+        throw InputError("expected SCENE.json REFERENCE.pfm OUT_PREFIX, got " + std::to_string(positional.size()) +
+                         " arguments (direct_compare --help)");
+    s.scene = load_scene(positional[0]);
+    Image reference = read_pfm(positional[1]);
+    std::string prefix = positional[2];
     if (crop_size == 0) crop_size = size;
     auto save = [&](const Image& image, const std::string& path) {
         write_png(crop(image, crop_x, crop_y, crop_size), path);
@@ -128,11 +144,13 @@ int main(int argc, char** argv) {
     s.scene.film_width = s.scene.film_height = size;
     s.scene.camera.aspect = 1.0;
     s.scene.camera.finalize();
-    if (reference.width() != size || reference.height() != size) {
-        std::fprintf(stderr, "the reference is %dx%d, not %dx%d\n", reference.width(),
-                     reference.height(), size, size);
-        return 2;
-    }
+    if (reference.width() != size || reference.height() != size)
+        throw InputError(positional[1] + ": the reference is " + std::to_string(reference.width()) + "x" +
+                         std::to_string(reference.height()) + ", not " + std::to_string(size) + "x" +
+                         std::to_string(size));
+    if (crop_x + crop_size > size || crop_y + crop_size > size)
+        throw InputError("--crop: the crop does not fit in the " + std::to_string(size) + "x" + std::to_string(size) +
+                         " image");
     s.accelerator = build_accelerator(s.scene, s.stages, AcceleratorSettings{});
     const DirectStrategy strategies[] = {DirectStrategy::hemisphere, DirectStrategy::light,
                                          DirectStrategy::mis};
@@ -167,5 +185,19 @@ int main(int argc, char** argv) {
                     relmse(o.image, reference));
         if (sequence_pngs) save(o.image, prefix + "_l" + std::to_string(l) + ".png");
     }
-    return 0;
+    return kExitOk;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    try {
+        return run(std::vector<std::string>(argv + 1, argv + argc));
+    } catch (const InputError& e) {
+        std::fprintf(stderr, "direct_compare: error: %s\n", e.what());
+        return kExitBadInput;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "direct_compare: internal error: %s\n", e.what());
+        return kExitFailure;
+    }
 }

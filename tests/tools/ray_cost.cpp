@@ -11,11 +11,12 @@
 // BVH nodes and primitive tests per ray (hardware-independent).
 #include <algorithm>
 #include <cstdio>
-#include <cstdlib>
 #include <string>
 #include <vector>
 
+#include "apps/number_flags.h"
 #include "core/counters.h"
+#include "core/error.h"
 #include "core/timer.h"
 #include "render/integrators.h"
 #include "stages/render_context.h"
@@ -24,19 +25,43 @@
 
 using namespace pt;
 
-int main(int argc, char** argv) {
-    if (argc < 2) {
-        std::fprintf(stderr, "usage: %s SCENE.json [--rays N] [--accel none|bvh]\n", argv[0]);
-        return 2;
-    }
-    Scene scene = load_scene(argv[1]);
+namespace {
+
+const char* kUsage =
+    "usage: ray_cost SCENE.json|MESH.obj [--rays N] [--accel none|bvh]\n"
+    "Times any-hit (occluded) against closest-hit (intersect) queries on the same N shadow\n"
+    "rays (default 1000000), one thread, best of 3, CPU seconds; docs/direct.md.\n"
+    "exit codes: 0 ok, 1 failure, 2 bad input\n";
+
+int run(const std::vector<std::string>& args) {
+    std::string scene_path;
     size_t count = 1000000;
     AcceleratorSettings accel;
-    for (int i = 2; i + 1 < argc; i += 2) {
-        std::string flag = argv[i];
-        if (flag == "--rays") count = size_t(std::atol(argv[i + 1]));
-        if (flag == "--accel") accel.use_bvh = std::string(argv[i + 1]) == "bvh";
+    for (size_t i = 0; i < args.size(); ++i) {
+        const std::string& a = args[i];
+        auto value = [&]() -> const std::string& {
+            if (i + 1 >= args.size()) throw InputError(a + ": expected a value after it");
+            return args[++i];
+        };
+        if (a == "-h" || a == "--help") {
+            std::fputs(kUsage, stdout);
+            return kExitOk;
+        } else if (a == "--rays") {
+            count = size_t(parse_whole_number(a, value(), 1, 1ll << 32));
+        } else if (a == "--accel") {
+            const std::string& v = value();
+            if (v != "none" && v != "bvh") throw InputError("--accel: expected none or bvh, got '" + v + "'");
+            accel.use_bvh = v == "bvh";
+        } else if (a.size() > 1 && a[0] == '-') {
+            throw InputError(a + ": unknown option (ray_cost --help)");
+        } else if (scene_path.empty()) {
+            scene_path = a;
+        } else {
+            throw InputError("unexpected argument '" + a + "' (ray_cost --help)");
+        }
     }
+    if (scene_path.empty()) throw InputError("no scene given (ray_cost --help)");
+    Scene scene = load_scene(scene_path);
     Stages stages = make_stages(StageSet::none());
     std::unique_ptr<Accelerator> accelerator = build_accelerator(scene, stages, accel);
     std::unique_ptr<Integrator> integrator = make_integrator(IntegratorKind::direct);
@@ -90,7 +115,7 @@ int main(int argc, char** argv) {
     });
     double n = double(shadow_rays.size());
     std::printf("scene %s, accelerator %s, %zu shadow rays (%.1f%% blocked), %zu camera rays\n",
-                argv[1], accelerator->info().name.c_str(), shadow_rays.size(), 100.0 * blocked / n,
+                scene_path.c_str(), accelerator->info().name.c_str(), shadow_rays.size(), 100.0 * blocked / n,
                 camera_rays.size());
     // Each query ran 3 times: per ray is work / (3 n).
     std::printf("| query on the shadow rays | ns per ray | nodes per ray | primitive tests per ray "
@@ -103,5 +128,19 @@ int main(int argc, char** argv) {
     std::printf("closest-hit camera rays: %.1f ns per ray; shadow / camera ray time: %.2f\n",
                 t_camera / camera_rays.size() * 1e9,
                 (t_occluded / n) / (t_camera / camera_rays.size()));
-    return 0;
+    return kExitOk;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    try {
+        return run(std::vector<std::string>(argv + 1, argv + argc));
+    } catch (const InputError& e) {
+        std::fprintf(stderr, "ray_cost: error: %s\n", e.what());
+        return kExitBadInput;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "ray_cost: internal error: %s\n", e.what());
+        return kExitFailure;
+    }
 }

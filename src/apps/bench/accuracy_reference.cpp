@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/timer.h"
 #include "image/image_io.h"
@@ -77,16 +78,6 @@ std::optional<Image> try_read_pfm(const std::string& path) {
     } catch (const InputError&) {
         return std::nullopt;  // a damaged cache file is rendered anew
     }
-}
-
-/// Writes through a temporary file, so that a reader never sees half a file.
-void write_pfm_atomically(const Image& image, const std::string& path) {
-    write_pfm(image, path + ".tmp");
-    fs::rename(path + ".tmp", path);
-}
-void write_text_atomically(const std::string& text, const std::string& path) {
-    std::ofstream(path + ".tmp", std::ios::binary) << text;
-    fs::rename(path + ".tmp", path);
 }
 
 /// The mean of the passes, and the estimated relMSE of that mean (file comment).
@@ -194,9 +185,10 @@ Reference converged_reference(const Scene& scene, const RenderSettings& base, in
                               {"own_relmse", r.own_relmse},
                               {"settings", words}};
     // The witness last: a reader that finds it current finds the rest current too.
-    write_pfm_atomically(r.image, base_path + ".pfm");
-    write_text_atomically(sidecar.dump(2) + "\n", base_path + ".json");
-    write_pfm_atomically(witness, base_path + "-witness.pfm");
+    // Each write is atomic (core/atomic_file.h): a reader never sees half a file.
+    write_pfm(r.image, base_path + ".pfm");
+    write_file_atomically(base_path + ".json", sidecar.dump(2) + "\n");
+    write_pfm(witness, base_path + "-witness.pfm");
     return r;
 }
 

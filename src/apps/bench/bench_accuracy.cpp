@@ -7,7 +7,6 @@
 // gnuplot). With --equal-time S, every technique renders for S seconds and
 // the images are written side by side with their error heat maps.
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <thread>
 
@@ -17,6 +16,7 @@
 #include "apps/bench/accuracy_techniques.h"
 #include "apps/bench/bench_command.h"
 #include "apps/bench/bench_util.h"
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "image/colormap.h"
 #include "image/image_io.h"
@@ -136,10 +136,9 @@ AccuracyOptions parse_accuracy_options(const Args& a) {
     o.out_dir = a.get("--out", o.out_dir);
     std::error_code ec;
     std::filesystem::create_directories(o.out_dir, ec);
-    if (!std::filesystem::is_directory(o.out_dir) ||
-        !std::ofstream(o.out_dir + "/.accuracy_write_test"))
-        throw InputError("accuracy: --out: cannot write to the folder '" + o.out_dir + "'");
-    std::filesystem::remove(o.out_dir + "/.accuracy_write_test", ec);
+    if (!std::filesystem::is_directory(o.out_dir))
+        throw InputError("accuracy: --out: cannot create the folder '" + o.out_dir + "'");
+    check_output_path(o.out_dir + "/accuracy", "accuracy: --out");
     return o;
 }
 
@@ -165,12 +164,6 @@ std::string command_line(const std::vector<std::string>& args) {
     return line;
 }
 
-void write_text(const std::string& text, const std::string& path) {
-    std::ofstream out(path);
-    out << text;
-    if (!out) throw std::runtime_error("cannot write " + path);
-}
-
 int run_accuracy(const std::vector<std::string>& args) {
     Args a("accuracy", args,
            {{"--budget", 1},
@@ -192,7 +185,7 @@ int run_accuracy(const std::vector<std::string>& args) {
             {"-h", 0},
             {"--help", 0}});
     if (a.has("-h") || a.has("--help")) {
-        std::cout << kHelp;
+        std::cout << "usage: bench " << kUsage << "\n" << kHelp;
         return kExitOk;
     }
     // Every input is checked before the first render.
@@ -254,8 +247,8 @@ int run_accuracy(const std::vector<std::string>& args) {
     report.load_after = load_average();
 
     const std::string markdown = accuracy_markdown(report);
-    write_text(markdown, prefix + "_accuracy.md");
-    write_text(accuracy_json(report).dump(2) + "\n", prefix + "_accuracy.json");
+    write_file_atomically(prefix + "_accuracy.md", markdown);
+    write_file_atomically(prefix + "_accuracy.json", accuracy_json(report).dump(2) + "\n");
     std::vector<std::string> written = {prefix + "_accuracy.md", prefix + "_accuracy.json",
                                         prefix + "_reference.png"};
     if (o.run_sweep) {

@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <iostream>
 #include <thread>
 
@@ -17,6 +16,7 @@
 #include "apps/bench/bench_render.h"
 #include "apps/bench/bench_util.h"
 #include "apps/bench/embree_kernel.h"
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/timer.h"
 #include "image/image_io.h"
@@ -364,9 +364,7 @@ void write_json(const std::string& path, const std::vector<SceneResult>& results
         }
         j["scenes"].push_back(s);
     }
-    std::ofstream out(path);
-    if (!out) throw InputError("bvh: --json: cannot write " + path);
-    out << j.dump(2) << "\n";
+    write_file_atomically(path, j.dump(2) + "\n");
 }
 
 int run_bvh(const std::vector<std::string>& raw) {
@@ -400,7 +398,7 @@ int run_bvh(const std::vector<std::string>& raw) {
             {"-h", 0},
             {"--help", 0}});
     if (a.has("-h") || a.has("--help")) {
-        std::cout << kHelp;
+        std::cout << "usage: bench " << kUsage << "\n" << kHelp;
         return kExitOk;
     }
     BvhOptions o;
@@ -425,8 +423,15 @@ int run_bvh(const std::vector<std::string>& raw) {
             std::cerr << "bench bvh: no shared meshes in " << shared_dir << "; skipping them\n";
         scenes.insert(scenes.end(), meshes.begin(), meshes.end());
     }
-    if (a.has("--json") && !std::ofstream(a.get("--json", ""), std::ios::app))
-        throw InputError("bvh: --json: cannot write " + a.get("--json", ""));
+    if (a.has("--json")) check_output_path(a.get("--json", ""), "bvh: --json");
+
+    // A long run says so before it starts (issue 22: --shared took ten minutes without a word).
+    const double per_scene = (o.linear ? o.budget : 0) + (o.kernels ? 3 * o.kernel_seconds : 0);
+    if (double(scenes.size()) * per_scene > 120)
+        std::cerr << "bench bvh: " << scenes.size() << " scenes, each up to " << fixed(per_scene, 0)
+                  << " s (the linear scan up to --budget, 3 ray kernels of --kernel-seconds): up to "
+                  << fixed(double(scenes.size()) * per_scene / 60, 0)
+                  << " minutes; --no-linear, or --budget 5 --kernel-seconds 0.2, is quicker\n";
 
     std::vector<SceneResult> results;
     for (const std::string& path : scenes)

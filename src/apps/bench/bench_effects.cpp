@@ -122,7 +122,7 @@ const char* kFurnaceBox = R"({
 int run_effects(const std::vector<std::string>& args) {
     Args a("effects", args, {{"-t", 1}, {"--repeat", 1}, {"-h", 0}, {"--help", 0}});
     if (a.has("-h") || a.has("--help")) {
-        std::cout << kHelp;
+        std::cout << "usage: bench " << kUsage << "\n" << kHelp;
         return kExitOk;
     }
     if (!a.positionals().empty())

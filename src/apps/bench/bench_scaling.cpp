@@ -5,7 +5,6 @@
 // growth: time per ray against log2 n (a BVH query should cost O(log n))
 // and build time against n (binned SAH: O(n log n)).
 #include <cmath>
-#include <fstream>
 #include <iostream>
 
 #include <nlohmann/json.hpp>
@@ -13,8 +12,10 @@
 #include "apps/bench/bench_command.h"
 #include "apps/bench/bench_util.h"
 #include "apps/bench/embree_kernel.h"
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/timer.h"
+#include "scene/framing.h"
 #include "scene/mesh.h"
 #include "scene/scene.h"
 #include "scene/scene_loader.h"
@@ -148,7 +149,7 @@ int run_scaling(const std::vector<std::string>& args) {
             {"-h", 0},
             {"--help", 0}});
     if (a.has("-h") || a.has("--help")) {
-        std::cout << kHelp;
+        std::cout << "usage: bench " << kUsage << "\n" << kHelp;
         return kExitOk;
     }
     if (!a.positionals().empty())
@@ -161,8 +162,7 @@ int run_scaling(const std::vector<std::string>& args) {
         height = parse_int("scaling: -r (height)", a.values("-r")[1], 1, 1 << 14);
     }
     double kernel_seconds = a.get_double("--kernel-seconds", 0.5, 0);
-    if (a.has("--json") && !std::ofstream(a.get("--json", ""), std::ios::app))
-        throw InputError("scaling: --json: cannot write " + a.get("--json", ""));
+    if (a.has("--json")) check_output_path(a.get("--json", ""), "scaling: --json");
 
     std::vector<SizeResult> results;
     for (uint64_t size : sizes)
@@ -259,7 +259,7 @@ int run_scaling(const std::vector<std::string>& args) {
             }
             j["sizes"].push_back(s);
         }
-        std::ofstream(a.get("--json", "")) << j.dump(2) << "\n";
+        write_file_atomically(a.get("--json", ""), j.dump(2) + "\n");
     }
     return kExitOk;
 }
