@@ -11,6 +11,7 @@ namespace pt {
 Color sample_lights_mis(const RenderContext& context, const SurfaceInteraction& isect,
                         const BSDF& bsdf, const Vec3& wo, int bsdf_samples, Rng& rng) {
     LightSampleContext ref{isect.p, bsdf.frame().n};
+    rng.seek(isect.depth, SampleSlot::light);  // the sampler's dimensions of light samples (core/sampler.h)
     Color L;
     for (const std::unique_ptr<Light>& light : context.lights.all()) {
         int n = light->sample_count(context.settings.light_samples);
@@ -60,6 +61,7 @@ Color estimate_direct_lighting_mis(const RenderContext& context, const Ray& ray,
     if (context.lights.non_delta_count() == 0) return L;
 
     LightSampleContext ref{isect.p, bsdf.frame().n};
+    rng.seek(isect.depth, SampleSlot::bsdf);
     Color sum;
     for (int i = 0; i < n_bsdf; ++i) {
         BSDFSample bs = bsdf.sample_f(wo, rng.next_2d());
