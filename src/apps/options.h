@@ -15,6 +15,10 @@
 
 namespace pt {
 
+/// The sampler of pathtracer and partN when --sampler is not given: the
+/// one that reached a given error soonest (docs/sampling.md).
+constexpr SamplerKind kDefaultSampler = SamplerKind::zsobol;
+
 struct Options {
     std::string scene_path;            ///< SCENE.json or MESH.obj
     RenderSettings render;             ///< -s -a -l -m -o -H --direct --integrator --seed --rr-depth --clamp

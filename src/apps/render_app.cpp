@@ -97,6 +97,7 @@ void write_stats(const std::string& path, const std::string& program, const Opti
     j["spp_max"] = options.render.spp;
     j["threads"] = options.threads;
     j["seed"] = options.render.seed;
+    j["sampler"] = to_string(options.render.sampler);
     j["student_stages"] = options.student.to_string();
     j["integrator"] = to_string(integrator);
     j["effects"] = effects.names();
@@ -134,7 +135,8 @@ void write_stats(const std::string& path, const std::string& program, const Opti
         for (int y = 0; y < scene.film_height; ++y)
             rows.push_back(std::vector<uint32_t>(counts.begin() + long(y) * scene.film_width,
                                                  counts.begin() + long(y + 1) * scene.film_width));
-        j["adaptive"] = {{"samples_per_batch", options.render.samples_per_batch},
+        j["adaptive"] = {{"rule", to_string(options.render.adaptive_rule)},
+                         {"samples_per_batch", options.render.samples_per_batch},
                          {"max_tolerance", options.render.max_tolerance},
                          {"mean_spp", double(total) / double(std::max<size_t>(counts.size(), 1))},
                          {"sample_counts", rows}};
@@ -196,6 +198,9 @@ int run(const std::vector<std::string>& args, const std::string& program, StageS
     std::cout << program << ": " << scene.path << ": " << scene.triangles.size() << " triangles, "
               << scene.spheres.size() << " spheres, " << scene.emitters.size() << " emitters\n"
               << program << ": student stages: " << options.student.to_string() << "\n"
+              << program << ": sampler: " << to_string(options.render.sampler)
+              << (options.render.adaptive ? std::string(", adaptive rule ") + to_string(options.render.adaptive_rule) : "")
+              << "\n"
               << program << ": effects: " << effects.to_string() << "\n"
               << program << ": integrator: "
               << (options.bvh_view ? std::string("bvh view (--bvh-view)")

@@ -24,44 +24,79 @@ Ray generate_ray(const Camera& camera, double x, double y, Vec2 lens_sample) {
     return Ray(camera.position + camera.to_world(lens), d, camera.near_clip, camera.far_clip);
 }
 
+namespace {
+
+constexpr uint64_t kDecisionStream = 0x73746F70ull;  // "stop": the split rule's own samples
+
+/// The radiance of one camera ray through (x + jitter.x, y + jitter.y);
+/// a sample that is not finite is counted and dropped (--stats reports it).
+Color camera_sample(const RenderContext& context, int x, int y, Vec2 jitter, Vec2 lens, Rng& rng) {
+    const Scene& scene = context.scene;
+    double u = (x + jitter.x) / scene.film_width;
+    double v = 1.0 - (y + jitter.y) / scene.film_height;  // image rows run top to bottom
+    Ray ray = context.stages.camera.generate_ray(scene.camera, u, v, lens);
+    Color L = context.radiance(ray, rng);
+    if (!L.is_finite()) {
+        ++thread_counters().nonfinite_samples;
+        L = Color(0);
+    }
+    return L;
+}
+
+}  // namespace
+
 PixelResult raytrace_pixel(const RenderContext& context, int x, int y) {
     const RenderSettings& settings = context.settings;
-    const Scene& scene = context.scene;
-    const uint64_t pixel = uint64_t(y) * uint64_t(scene.film_width) + uint64_t(x);
+    const uint64_t pixel = uint64_t(y) * uint64_t(context.scene.film_width) + uint64_t(x);
+    const bool lens_sampling = context.code_paths.lens_sampling;
+    // Adaptive sampling's `split` rule (Kirk and Arvo 1991, "Unbiased
+    // sampling techniques for image synthesis"): the stopping rule sees only
+    // samples of a stream of their own, which the estimate never averages,
+    // so when a pixel stops says nothing about the values it averages, and
+    // the estimate stays unbiased. CS184's rule tests the averaged samples.
+    const bool split = settings.adaptive && settings.adaptive_rule == AdaptiveRule::split;
     Color sum;
-    PixelStatistics stats;  // of the samples' illuminance, for adaptive sampling
-    int n = 0;
-    for (int i = 0; i < settings.spp; ++i) {
-        // One generator per (seed, pixel, sample): the image does not depend
-        // on the thread count or on the order in which pixels are rendered.
-        Rng rng(settings.seed, pixel, uint64_t(i));
-        Vec2 jitter = settings.spp == 1 ? Vec2(0.5, 0.5) : rng.next_2d();
-        // A pinhole needs no lens sample (DESIGN.md "Effects"); a thin lens
-        // draws it from a stream of its own, so the rest of the sample's
-        // random numbers are the same either way.
-        Vec2 lens(0.5, 0.5);
-        if (context.code_paths.lens_sampling) lens = Rng::lens(settings.seed, pixel, uint64_t(i)).next_2d();
-        double u = (x + jitter.x) / scene.film_width;
-        double v = 1.0 - (y + jitter.y) / scene.film_height;  // image rows run top to bottom
-        Ray ray = context.stages.camera.generate_ray(scene.camera, u, v, lens);
-        Color L = context.radiance(ray, rng);
-        if (!L.is_finite()) {
-            // Counted and dropped, never averaged in: --stats reports the count.
-            ++thread_counters().nonfinite_samples;
-            L = Color(0);
-        }
-        sum += L;
-        ++n;
+    int averaged = 0;       // samples in the estimate
+    int n = 0;              // camera rays traced
+    PixelStatistics stats;  // of the samples' illuminance that the stopping rule sees
+    auto observe = [&stats](const Color& L) {
         double illuminance = L.luminance();
         stats.s1 += illuminance;
         stats.s2 += illuminance * illuminance;
-        stats.n = n;
+        ++stats.n;
+    };
+    for (int i = 0; n < settings.spp; ++i) {
+        // Sample i: its own generator (core/rng.h), so the image does not
+        // depend on the thread count or on the order of the pixels. The
+        // dimensions: 0-1 the point in the pixel (its centre when spp is 1,
+        // as CS184), 2-3 the lens (a pinhole skips them; without a sampler
+        // the lens has a stream of its own, so a pinhole leaves every other
+        // number of the sample where it was), the bounces from 4 on.
+        Rng rng = context.sample_generator(x, y, i);
+        Vec2 jitter = settings.spp == 1 ? Vec2(0.5, 0.5) : rng.next_2d();
+        rng.seek_dimension(2);
+        Vec2 lens(0.5, 0.5);
+        if (lens_sampling) lens = rng.sampler() ? rng.next_2d() : Rng::lens(settings.seed, pixel, uint64_t(i)).next_2d();
+        rng.seek_dimension(4);
+        Color L = camera_sample(context, x, y, jitter, lens, rng);
+        sum += L;
+        ++averaged;
+        ++n;
+        if (!split) {
+            observe(L);
+        } else if (n < settings.spp) {
+            Rng decision = Rng::substream(settings.seed, pixel, uint64_t(i), kDecisionStream);
+            Vec2 decision_jitter = decision.next_2d();
+            Vec2 decision_lens = lens_sampling ? decision.next_2d() : Vec2(0.5, 0.5);
+            observe(camera_sample(context, x, y, decision_jitter, decision_lens, decision));
+            ++n;
+        }
         // Adaptive sampling (Part 5): test for convergence after each batch.
-        if (settings.adaptive && n % settings.samples_per_batch == 0 &&
+        if (settings.adaptive && stats.n > 0 && stats.n % settings.samples_per_batch == 0 &&
             context.stages.adaptive.has_converged(stats, settings.max_tolerance))
             break;
     }
-    return {sum / double(n), n};
+    return {sum / double(averaged), n};
 }
 
 }  // namespace pt::reference

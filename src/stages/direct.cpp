@@ -47,6 +47,7 @@ Color estimate_direct_lighting_hemisphere(const RenderContext& context, const Ra
     Vec3 wo = bsdf.to_local(isect.wo);
     const int n = std::max(1, context.settings.light_samples) * context.lights.non_delta_count();
     const double pdf = uniform_hemisphere_pdf();
+    rng.seek(isect.depth, SampleSlot::bsdf);  // the sampler's dimensions of BSDF-side draws (core/sampler.h)
     Color sum;
     for (int i = 0; i < n; ++i) {
         Vec3 wi = sample_uniform_hemisphere(rng.next_2d());

@@ -69,6 +69,7 @@ Color at_least_one_bounce_radiance(const RenderContext& context, const Ray& ray,
         const bool continues = bounces < settings.max_depth;
         const bool find_emission = counted && paths.emission && (bsdf.is_delta() || bsdf_emission);
         if (!continues && !find_emission) break;
+        rng.seek(x.depth, SampleSlot::bsdf);  // the sampler's dimensions of this decision (core/sampler.h)
         BSDFSample bs = bsdf.sample_f(wo, rng.next_2d());
         if (!bs.valid() || bs.f.is_black()) break;
         Color weight = bs.f * (std::fabs(bs.wi.z) / bs.pdf);
@@ -78,6 +79,7 @@ Color at_least_one_bounce_radiance(const RenderContext& context, const Ray& ray,
         if (settings.russian_roulette && bounces > settings.rr_depth) {
             double q = std::min(kMaxSurvivalProbability,
                                 (throughput * beta * weight).max_component() * eta_scale);
+            rng.seek(x.depth, SampleSlot::roulette);
             if (rng.next_1d() >= q) break;
             weight /= q;
         }

@@ -16,6 +16,7 @@ Color sample_lights_mis(const RenderContext& context, const SurfaceInteraction& 
                         const BSDF& bsdf, const Vec3& wo, int bsdf_samples, Rng& rng) {
     LightSampleContext ref = light_sample_context(isect, bsdf);
     const bool both_sides = bsdf.is_transmissive();
+    rng.seek(isect.depth, SampleSlot::light);  // the sampler's dimensions of light samples (core/sampler.h)
     Color L;
     for (const std::unique_ptr<Light>& light : context.lights.all()) {
         int n = light->sample_count(context.settings.light_samples);
@@ -66,6 +67,7 @@ Color estimate_direct_lighting_mis(const RenderContext& context, const Ray& ray,
     if (context.lights.non_delta_count() == 0) return L;
 
     LightSampleContext ref = light_sample_context(isect, bsdf);
+    rng.seek(isect.depth, SampleSlot::bsdf);
     Color sum;
     for (int i = 0; i < n_bsdf; ++i) {
         BSDFSample bs = bsdf.sample_f(wo, rng.next_2d());

@@ -47,6 +47,23 @@ SurfaceInteraction make_interaction(const Scene& scene, const Ray& ray, const Hi
 
 namespace {
 
+std::shared_ptr<const Sampler> make_sampler(const Scene& scene, const LightSet& lights,
+                                            const Stages& stages, const RenderSettings& settings) {
+    if (settings.sampler == SamplerKind::independent) return nullptr;
+    SamplerSettings s;
+    s.kind = settings.sampler;
+    s.seed = settings.seed;
+    // The split adaptive rule averages only every other sample: stratify those.
+    s.spp = settings.adaptive && settings.adaptive_rule == AdaptiveRule::split ? (settings.spp + 1) / 2 : settings.spp;
+    s.width = scene.film_width;
+    s.height = scene.film_height;
+    // Light 2D draws per shading point: the size of a bounce's light slot.
+    s.light_samples_per_vertex = 0;
+    for (const std::unique_ptr<Light>& light : lights.all())
+        s.light_samples_per_vertex += light->sample_count(settings.light_samples);
+    return std::make_shared<const Sampler>(s, stages.sampler.functions());
+}
+
 /// `stages` with generate_ray replaced by the projection of a camera that
 /// is not perspective (Part 1's generate_ray is the perspective one).
 Stages with_camera_projection(Stages stages, const Camera& camera) {
@@ -62,13 +79,21 @@ RenderContext::RenderContext(const Scene& scene_, const Accelerator& accelerator
                              const Integrator& integrator_)
     : owned_lights_(std::make_shared<const LightSet>(scene_)),
       owned_stages_(with_camera_projection(stages_, scene_.camera)),
+      owned_sampler_(make_sampler(scene_, *owned_lights_, stages_, settings_)),
       scene(scene_),
       accelerator(accelerator_),
       stages(owned_stages_),
       settings(settings_),
       integrator(integrator_),
       lights(*owned_lights_),
-      code_paths(plan_code_paths(scene_, analyze_effects(scene_, settings_), settings_)) {}
+      code_paths(plan_code_paths(scene_, analyze_effects(scene_, settings_), settings_)),
+      sampler(owned_sampler_.get()) {}
+
+Rng RenderContext::sample_generator(int x, int y, int index) const {
+    const uint64_t pixel = uint64_t(y) * uint64_t(scene.film_width) + uint64_t(x);
+    if (!sampler) return Rng(settings.seed, pixel, uint64_t(index));
+    return Rng(*sampler, uint32_t(x), uint32_t(y), pixel, uint64_t(index));
+}
 
 std::optional<SurfaceInteraction> RenderContext::intersect(const Ray& ray) const {
     ++thread_counters().closest_hit_rays;

@@ -27,6 +27,7 @@ private:
     /// The stage tables, with the camera's own projection in place of
     /// generate_ray when the scene's camera is not perspective (scene/camera.h).
     Stages owned_stages_;
+    std::shared_ptr<const Sampler> owned_sampler_;   ///< null for independent sampling
 
 public:
     /// Builds the scene's lights (LightSet) from `scene`, which must not
@@ -43,6 +44,13 @@ public:
     /// The code paths this render runs (stages/effects.h): the effects
     /// analysis of scene and settings, plus settings.force.
     const CodePaths code_paths;
+    /// settings.sampler with the sampler stage's functions, or null for
+    /// independent sampling (core/sampler.h).
+    const Sampler* const sampler;
+
+    /// The generator of camera sample `index` of pixel (x, y): its own PCG32
+    /// stream (independent sampling), or the sampler's values (core/rng.h).
+    Rng sample_generator(int x, int y, int index) const;
 
     /// The closest surface hit by `ray`, or nothing (counted as a closest-hit ray).
     std::optional<SurfaceInteraction> intersect(const Ray& ray) const;

@@ -11,6 +11,14 @@ const char* to_string(DirectStrategy s) {
     return "?";
 }
 
+const char* to_string(AdaptiveRule r) {
+    switch (r) {
+        case AdaptiveRule::split: return "split";
+        case AdaptiveRule::cs184: return "cs184";
+    }
+    return "?";
+}
+
 const char* to_string(IntegratorKind k) {
     switch (k) {
         case IntegratorKind::automatic: return "auto";

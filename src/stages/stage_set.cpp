@@ -14,6 +14,7 @@ const char* to_string(Stage stage) {
         case Stage::direct: return "direct";
         case Stage::global: return "global";
         case Stage::adaptive: return "adaptive";
+        case Stage::sampler: return "sampler";
     }
     return "?";
 }
@@ -26,6 +27,7 @@ int part_of(Stage stage) {
         case Stage::direct: return 3;
         case Stage::global: return 4;
         case Stage::adaptive: return 5;
+        case Stage::sampler: return 6;
     }
     return 0;
 }
@@ -54,7 +56,7 @@ StageSet StageSet::parse(const std::string& list, const std::string& flag) {
         if (!found)
             throw InputError(flag + ": unknown stage '" + name +
                              "' (expected a comma-separated list of camera, intersect, bvh, direct, "
-                             "global, adaptive, or 'all' or 'none')");
+                             "global, adaptive, sampler, or 'all' or 'none')");
     }
     if (set.empty()) throw InputError(flag + ": empty stage list (use 'none' for no student stages)");
     return set;

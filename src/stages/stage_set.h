@@ -1,4 +1,4 @@
-// StageSet: which of the six staged modules run student code.
+// StageSet: which of the staged modules run student code.
 //
 // `--student LIST` takes a comma-separated list of stage names, or `all` or
 // `none`. Part N's executable defaults to the stages of part N.
@@ -9,19 +9,19 @@
 
 namespace pt {
 
-enum class Stage : uint8_t { camera, intersect, bvh, direct, global, adaptive };
-constexpr int kStageCount = 6;
+enum class Stage : uint8_t { camera, intersect, bvh, direct, global, adaptive, sampler };
+constexpr int kStageCount = 7;
 
 const char* to_string(Stage stage);
-/// The course part (1 to 5) a stage belongs to.
+/// The course part (1 to 6) a stage belongs to.
 int part_of(Stage stage);
 
 class StageSet {
 public:
     StageSet() = default;
     static StageSet none() { return {}; }
-    static StageSet all() { return StageSet(0x3f); }
-    /// The stages of course part `part` (1 to 5).
+    static StageSet all() { return StageSet(uint8_t((1u << kStageCount) - 1)); }
+    /// The stages of course part `part` (1 to 6).
     static StageSet of_part(int part);
     /// Parses "camera,intersect", "all" or "none"; throws InputError naming `flag`.
     static StageSet parse(const std::string& list, const std::string& flag = "--student");

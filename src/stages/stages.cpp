@@ -58,6 +58,11 @@ Stages make_stages(StageSet student, TriangleTest triangle_test) {
         s.global = {reference::at_least_one_bounce_radiance,
                     reference::est_radiance_global_illumination};
     }
+    if (student.contains(Stage::sampler)) {
+        s.sampler = {student::stratified_sample_2d, student::scrambled_radical_inverse};
+    } else {
+        s.sampler = {reference::stratified_sample_2d, reference::scrambled_radical_inverse};
+    }
     return s;
 }
 

@@ -17,6 +17,7 @@
 #include "stages/direct.h"
 #include "stages/global.h"
 #include "stages/intersect.h"
+#include "stages/sampler.h"
 #include "stages/stage_set.h"
 
 namespace pt {
@@ -51,6 +52,7 @@ struct Stages {
     AdaptiveStage adaptive;
     DirectStage direct;
     GlobalStage global;
+    SamplerStage sampler;
 
     bool is_student(Stage s) const { return student.contains(s); }
 };

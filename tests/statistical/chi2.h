@@ -22,8 +22,10 @@
 //
 // Part 4 adds the microfacet sample_f (6 tests), the environment map (1)
 // and the discrete check of glass's two lobes (2); Part 7 the emission
-// sampling of every light kind (10, test_light_emission.cpp); the glossy
-// models (14, test_glossy_sampling.cpp): 48 in all. Add a test, raise
+// sampling of every light kind (10, test_light_emission.cpp); Part 6 the
+// uniformity of four samplers in four places each (16,
+// test_sampler_uniformity.cpp); the glossy models (14,
+// test_glossy_sampling.cpp): 64 in all. Add a test, raise
 // kChiSquareTestCount.
 #pragma once
 
@@ -45,7 +47,7 @@ namespace pt::stats {
 /// Every chi-square test in tests/statistical (one per TEST_CASE or
 /// SUBCASE that calls chi2_test); the Sidak correction divides the family
 /// significance among them. Keep it in sync when adding tests.
-constexpr int kChiSquareTestCount = 48;
+constexpr int kChiSquareTestCount = 64;
 constexpr double kFamilySignificance = 0.01;
 
 /// Per-test significance that keeps the family-wise error rate at `alpha`

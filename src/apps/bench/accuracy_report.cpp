@@ -137,6 +137,19 @@ std::string accuracy_markdown(const AccuracyReport& r) {
                    sig(x.equal_time_ratio, 3)});
         md << c.markdown();
     }
+    bool samplers = false;
+    for (const SweepResult& s : r.sweeps) samplers = samplers || s.technique.theory_smooth != 0;
+    if (samplers) {
+        md << "\nConvergence: the least-squares slope of log relMSE against log spp (renders of 2 spp "
+           << "or more), beside the theory for a smooth integrand and across an edge (stages/sampler.h); "
+           << "the reference's own error flattens the slope once a render's relMSE nears it:\n\n";
+        Table c({"technique", "fitted slope", "theory, smooth", "theory, edge"}, 1);
+        for (const SweepResult& s : r.sweeps)
+            if (s.technique.theory_smooth != 0)
+                c.add({s.technique.name, sig(fitted_slope(s.rows), 3), sig(s.technique.theory_smooth, 2),
+                       sig(s.technique.theory_edge, 2)});
+        md << c.markdown();
+    }
     md << "\nTechniques:\n\n";
     std::vector<Technique> seen;
     for (const SweepResult& s : r.sweeps)
@@ -179,6 +192,10 @@ nlohmann::json accuracy_json(const AccuracyReport& r) {
                                 {"finished", s.finished},
                                 {"rows", nlohmann::json::array()}};
             if (!s.finished) t["cut_at_seconds"] = s.cut_at;
+            const double slope = fitted_slope(s.rows);
+            t["fitted_slope"] = std::isfinite(slope) ? nlohmann::json(slope) : nlohmann::json(nullptr);
+            if (s.technique.theory_smooth != 0)
+                t["theory_slope"] = {{"smooth", s.technique.theory_smooth}, {"edge", s.technique.theory_edge}};
             for (const AccuracyRow& row : s.rows)
                 t["rows"].push_back(row_json(row));
             j["techniques"].push_back(t);

@@ -229,4 +229,16 @@ std::vector<Comparison> compare_with_baselines(const std::vector<SweepResult>& s
     return out;
 }
 
+double fitted_slope(const std::vector<AccuracyRow>& rows) {
+    double sx = 0, sy = 0, sxx = 0, sxy = 0;
+    int n = 0;
+    for (const AccuracyRow& row : rows) {
+        if (row.spp < 2 || !(row.relmse > 0)) continue;
+        const double x = std::log(double(row.spp)), y = std::log(row.relmse);
+        sx += x, sy += y, sxx += x * x, sxy += x * y, ++n;
+    }
+    if (n < 3) return std::nan("");
+    return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+
 }  // namespace pt::bench

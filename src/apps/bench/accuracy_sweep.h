@@ -140,6 +140,11 @@ struct Comparison {
 std::vector<Comparison> compare_with_baselines(const std::vector<SweepResult>& sweeps,
                                                const std::vector<EqualTimeResult>& equal_time);
 
+/// The least-squares slope of log relMSE against log spp over the rows of
+/// 2 spp or more (-1 for independent samples; steeper for stratified and
+/// quasi-Monte Carlo samplers, stages/sampler.h); NaN with fewer than 3 rows.
+double fitted_slope(const std::vector<AccuracyRow>& rows);
+
 /// relMSE at `seconds`, on the straight lines in log-log between the rows
 /// of 2 spp or more; NaN outside their times.
 double relmse_at(const std::vector<AccuracyRow>& rows, double seconds);

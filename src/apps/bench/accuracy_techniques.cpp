@@ -13,6 +13,18 @@ bool textbook_has_converged(const PixelStatistics& stats, double max_tolerance) 
     return 1.96 * std::sqrt(variance / n) <= max_tolerance * mu;
 }
 
+/// --sampler K.
+template <SamplerKind K>
+void use_sampler(TechniqueConfig& c) {
+    c.settings.sampler = K;
+}
+
+/// --adaptive cs184: Part 5's rule, which decides from the samples it averages.
+void adaptive_cs184(TechniqueConfig& c) {
+    c.settings.adaptive = true;
+    c.settings.adaptive_rule = AdaptiveRule::cs184;
+}
+
 /// -m D: a hard cap of D bounces.
 template <int D>
 void cap_depth(TechniqueConfig& c) {
@@ -27,12 +39,17 @@ const std::vector<Technique>& all_techniques() {
          [](TechniqueConfig&) {}},
         {"mis", "MIS of light and BSDF samples at each vertex (--direct mis)", "light",
          [](TechniqueConfig& c) { c.settings.direct = DirectStrategy::mis; }},
-        {"adaptive", "adaptive sampling (-a), -s is the maximum", "light",
-         [](TechniqueConfig& c) { c.settings.adaptive = true; }},
-        {"adaptive-noguard", "adaptive sampling without the rare-event guard (CS184's rule)",
-         "adaptive",
+        {"adaptive", "adaptive sampling (-a, --adaptive split: unbiased), -s is the maximum", "light",
          [](TechniqueConfig& c) {
              c.settings.adaptive = true;
+             c.settings.adaptive_rule = AdaptiveRule::split;
+         }},
+        {"adaptive-cs184", "adaptive sampling with Part 5's rule (--adaptive cs184): biased", "adaptive",
+         adaptive_cs184},
+        {"adaptive-noguard", "--adaptive cs184 without the rare-event guard (CS184's textbook rule)",
+         "adaptive-cs184",
+         [](TechniqueConfig& c) {
+             adaptive_cs184(c);
              c.stages.adaptive.has_converged = textbook_has_converged;
          }},
         {"rr-off", "no Russian roulette (--rr-depth off): paths end only at -m or a miss", "light",
@@ -48,8 +65,24 @@ const std::vector<Technique>& all_techniques() {
         {"depth-6", "-m 6: at most 6 bounces", "light", cap_depth<6>, true},
         {"depth-7", "-m 7: at most 7 bounces", "light", cap_depth<7>, true},
         {"depth-8", "-m 8: at most 8 bounces", "light", cap_depth<8>, true},
+        {"sampler-independent", "--sampler independent: PCG32 per (seed, pixel, sample)", "light",
+         use_sampler<SamplerKind::independent>, false, -1, -1},
+        {"sampler-stratified", "--sampler stratified: jittered strata per pixel and dimension", "light",
+         use_sampler<SamplerKind::stratified>, false, -2, -1.5},
+        {"sampler-halton", "--sampler halton: Halton over the image, random digit permutations", "light",
+         use_sampler<SamplerKind::halton>, false, -2, -1.5},
+        {"sampler-sobol", "--sampler sobol: Sobol over the image, Owen-scrambled, padded", "light",
+         use_sampler<SamplerKind::sobol>, false, -3, -1.5},
+        {"sampler-zsobol", "--sampler zsobol: Morton-ordered Owen-scrambled Sobol (blue-noise error)", "light",
+         use_sampler<SamplerKind::zsobol>, false, -3, -1.5},
     };
     return techniques;
+}
+
+std::vector<std::string> sampler_technique_names() {
+    std::vector<std::string> names;
+    for (SamplerKind kind : all_sampler_kinds()) names.push_back(std::string("sampler-") + to_string(kind));
+    return names;
 }
 
 std::vector<Technique> select_techniques(const std::string& list) {
@@ -60,7 +93,12 @@ std::vector<Technique> select_techniques(const std::string& list) {
     while (start <= list.size()) {
         size_t comma = list.find(',', start);
         if (comma == std::string::npos) comma = list.size();
-        names.push_back(list.substr(start, comma - start));
+        std::string name = list.substr(start, comma - start);
+        if (name == "samplers") {
+            for (const std::string& s : sampler_technique_names()) names.push_back(s);
+        } else {
+            names.push_back(name);
+        }
         start = comma + 1;
     }
     std::string known;
@@ -72,7 +110,7 @@ std::vector<Technique> select_techniques(const std::string& list) {
             found = found || t.name == name;
         if (!found)
             throw InputError("accuracy: --techniques: unknown technique '" + name +
-                             "' (expected all, or some of: " + known + ")");
+                             "' (expected all, samplers, or some of: " + known + ")");
     }
     std::vector<Technique> chosen;
     for (const Technique& t : all)

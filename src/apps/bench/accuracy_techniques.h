@@ -30,7 +30,13 @@ struct Technique {
     std::string baseline;  ///< the technique its efficiency is compared with; "" for none
     void (*apply)(TechniqueConfig& config);
     bool path_only = false;  ///< meaningful only when the baseline is the path tracer (-m >= 2)
+    /// Samplers: the theoretical log-log slope of MSE against spp for a
+    /// smooth integrand and across an edge (stages/sampler.h); 0: none.
+    double theory_smooth = 0, theory_edge = 0;
 };
+
+/// The techniques that the group name `samplers` stands for in --techniques.
+std::vector<std::string> sampler_technique_names();
 
 /// Every technique, in the order of the table.
 const std::vector<Technique>& all_techniques();
