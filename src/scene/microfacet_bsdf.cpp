@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/math.h"
+#include "core/rng.h"
 #include "scene/fresnel.h"
 #include "scene/material.h"
 #include "scene/microfacet.h"
@@ -141,6 +142,22 @@ double rough_dielectric_pdf(const Material& material, const Vec3& wo, const Vec3
     // The Jacobian of the refracted direction with respect to the facet normal (Walter eq. 17).
     double denom = sqr(dot(wi, m) + dot(wo, m) / eta);
     return pdf_m * (1.0 - F) * std::fabs(dot(wi, m)) / denom;
+}
+
+AlbedoEstimate rough_albedo(const Material& material, const Vec3& wo, int n, uint64_t seed) {
+    Rng rng(seed);
+    double s1 = 0, s2 = 0;
+    for (int i = 0; i < n; ++i) {
+        Vec2 u = rng.next_2d();
+        BSDFSample s = material.type == MaterialType::rough_dielectric
+                           ? rough_dielectric_sample_f(material, wo, u, rng.next_1d())
+                           : rough_conductor_sample_f(material, wo, u);
+        double w = s.valid() ? s.f.g * std::fabs(s.wi.z) / s.pdf * s.eta * s.eta : 0.0;
+        s1 += w;
+        s2 += w * w;
+    }
+    double mean = s1 / n;
+    return {mean, std::sqrt(std::max(0.0, s2 / n - mean * mean) / n)};
 }
 
 }  // namespace pt

@@ -36,6 +36,8 @@
 // f(wo, wi) / eta_o^2 ... for transmission, Helmholtz for reflection).
 #pragma once
 
+#include <cstdint>
+
 #include "core/color.h"
 #include "core/vec3.h"
 #include "scene/bsdf.h"
@@ -56,5 +58,16 @@ Color rough_dielectric_f(const Material& material, const Vec3& wo, const Vec3& w
 /// u picks the facet normal, uc in [0, 1) reflection (uc < F) or refraction.
 BSDFSample rough_dielectric_sample_f(const Material& material, const Vec3& wo, Vec2 u, double uc);
 double rough_dielectric_pdf(const Material& material, const Vec3& wo, const Vec3& wi);
+
+/// The white furnace of a rough material alone: its directional albedo
+/// E[f |cos theta_i| / pdf] from wo by its own sampling (n samples, PCG32
+/// stream `seed`), refracted samples counted eta^2 times (their radiance
+/// carries 1 / eta^2, their energy does not); 1 - mean is the energy that
+/// single scattering loses. With the standard error of the mean.
+struct AlbedoEstimate {
+    double mean = 0;
+    double standard_error = 0;
+};
+AlbedoEstimate rough_albedo(const Material& material, const Vec3& wo, int n, uint64_t seed);
 
 }  // namespace pt

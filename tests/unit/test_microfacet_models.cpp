@@ -67,23 +67,6 @@ Material rough(MaterialType type, MicrofacetModel model, double ax, double ay, d
     return m;
 }
 
-/// The directional albedo E[f |cos| / pdf] from wo, and its standard error;
-/// refracted samples count eta^2 times (their radiance carries 1 / eta^2,
-/// their energy does not).
-std::pair<double, double> albedo(const Material& m, const Vec3& wo, int n, uint64_t seed) {
-    BSDF bsdf(m, Frame(), {reference::diffuse_f, reference::diffuse_sample_f});
-    Rng rng(seed);
-    double s1 = 0, s2 = 0;
-    for (int i = 0; i < n; ++i) {
-        BSDFSample s = bsdf.sample_f(wo, rng.next_2d());
-        double w = s.valid() ? s.f.g * std::fabs(s.wi.z) / s.pdf * s.eta * s.eta : 0.0;
-        s1 += w;
-        s2 += w * w;
-    }
-    double mean = s1 / n;
-    return {mean, std::sqrt(std::max(0.0, s2 / n - mean * mean) / n)};
-}
-
 }  // namespace
 
 TEST_CASE("microfacet models: D integrates to 1 over the projected hemisphere") {
@@ -125,7 +108,8 @@ TEST_CASE("white furnace: glossy BSDFs reflect at most what arrives, nearly all 
                     for (double side : {1.0, -1.0}) {
                         if (type == MaterialType::microfacet && side < 0) continue;  // two-sided by its frame
                         Vec3 wo(std::sqrt(1 - cos_o * cos_o), 0, side * cos_o);
-                        auto [a, error] = albedo(m, wo, n, ++seed);
+                        AlbedoEstimate estimate = rough_albedo(m, wo, n, ++seed);
+                        double a = estimate.mean, error = estimate.standard_error;
                         CAPTURE(std::string(to_string(type)));
                         CAPTURE(std::string(to_string(model)));
                         CAPTURE(alpha);

@@ -13,31 +13,13 @@
 #include "apps/bench/bench_command.h"
 #include "apps/number_flags.h"
 #include "core/error.h"
-#include "core/rng.h"
-#include "scene/bsdf.h"
 #include "scene/material.h"
-#include "stages/direct.h"
+#include "scene/microfacet_bsdf.h"
 
 namespace pt::bench {
 namespace {
 
 const char* kUsage = "furnace [--samples N]";
-
-/// The directional albedo from wo and its standard error; refracted energy
-/// counts eta^2 times what the radiance weight carries.
-std::pair<double, double> albedo(const Material& m, const Vec3& wo, int n, uint64_t seed) {
-    BSDF bsdf(m, Frame(), {reference::diffuse_f, reference::diffuse_sample_f});
-    Rng rng(seed);
-    double s1 = 0, s2 = 0;
-    for (int i = 0; i < n; ++i) {
-        BSDFSample s = bsdf.sample_f(wo, rng.next_2d());
-        double w = s.valid() ? s.f.g * std::fabs(s.wi.z) / s.pdf * s.eta * s.eta : 0.0;
-        s1 += w;
-        s2 += w * w;
-    }
-    double mean = s1 / n;
-    return {mean, std::sqrt(std::max(0.0, s2 / n - mean * mean) / n)};
-}
 
 int run_furnace(const std::vector<std::string>& args) {
     int samples = 1000000;
@@ -72,8 +54,7 @@ int run_furnace(const std::vector<std::string>& args) {
                         m.eta = Color(1);
                         m.k = Color(1e4);  // F = 1 for the conductor
                         Vec3 wo(std::sqrt(1 - c * c), 0, side * c);
-                        auto [mean, error] = albedo(m, wo, samples, ++seed);
-                        (void)error;
+                        double mean = rough_albedo(m, wo, samples, ++seed).mean;
                         std::printf(" %.1f |", 100.0 * (1.0 - mean) + 0.0);  // + 0.0: no "-0.0"
                     }
                     std::printf("\n");
