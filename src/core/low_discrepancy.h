@@ -68,12 +68,25 @@ struct SobolDimension1 {
 };
 inline constexpr SobolDimension1 kSobolDimension1{};
 
+/// The same matrix byte by byte: entry [k][b] is the XOR of the columns
+/// 8k ... 8k + 7 selected by the bits of b (a table look-up per index byte
+/// instead of a loop per index bit: the renderer's hot path).
+struct SobolDimension1Bytes {
+    std::array<std::array<uint64_t, 256>, 8> table{};
+    constexpr SobolDimension1Bytes() {
+        for (int k = 0; k < 8; ++k)
+            for (int b = 0; b < 256; ++b)
+                for (int j = 0; j < 8; ++j)
+                    if ((b >> j) & 1) table[size_t(k)][size_t(b)] ^= kSobolDimension1.column[size_t(8 * k + j)];
+    }
+};
+inline constexpr SobolDimension1Bytes kSobolDimension1Bytes{};
+
 /// Sobol dimensions 0 and 1 of index a, as 64-bit binary fractions.
 inline uint64_t sobol_dimension0(uint64_t a) { return reverse_bits_64(a); }
 inline uint64_t sobol_dimension1(uint64_t a) {
     uint64_t v = 0;
-    for (int j = 0; a != 0; ++j, a >>= 1)
-        if (a & 1) v ^= kSobolDimension1.column[size_t(j)];
+    for (size_t k = 0; a != 0; ++k, a >>= 8) v ^= kSobolDimension1Bytes.table[k][a & 0xFF];
     return v;
 }
 

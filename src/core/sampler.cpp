@@ -13,6 +13,7 @@ namespace {
 
 constexpr int kHaltonDimensions = 128;     // primes with a digit permutation; later dimensions are padded
 constexpr uint32_t kHaltonMaxResolution = 128;  // the pixel tile of pbrt-v4's HaltonSampler
+constexpr uint32_t kCachedKeys = 128;  // zsobol: dimensions whose hash keys are computed once
 
 std::vector<int> first_primes(int count) {
     std::vector<int> primes;
@@ -70,8 +71,10 @@ struct Sampler::Tables {
     // sobol: the inverse of the m x m block of C_1 that the pixel's row leaves to solve
     int log2_resolution = 0;
     std::vector<uint64_t> pixel_row_inverse;  // column k: the unknown bits that flip when row bit k flips
-    // zsobol
+    // zsobol: per dimension, the keys of the index permutation and of the
+    // scrambles (hashes of the seed and the dimension), for the first ones
     int morton_bits = 0, sample_bits = 0;
+    std::vector<uint64_t> index_keys, scramble_keys_1d, scramble_keys_2d;
     Base4Permutations base4;
 };
 
@@ -152,11 +155,20 @@ Sampler::Sampler(const SamplerSettings& settings, const SamplerFunctions& functi
         case SamplerKind::zsobol:
             t.morton_bits = 2 * ceil_log2(std::max(w, h));
             t.sample_bits = ceil_log2(uint64_t(settings_.spp));
+            for (uint32_t d = 0; d < kCachedKeys; ++d) {
+                t.index_keys.push_back(zsobol_key(d, 0));
+                t.scramble_keys_1d.push_back(zsobol_key(d, 1));
+                t.scramble_keys_2d.push_back(zsobol_key(d, 2));
+            }
             break;
     }
 }
 
 Sampler::~Sampler() = default;
+
+uint64_t Sampler::zsobol_key(uint32_t dimension, int purpose) const {
+    return hash_values(settings_.seed, dimension, 0x5A536Full + uint64_t(purpose));
+}
 
 uint32_t Sampler::slot_dimension(int depth, SampleSlot slot) const {
     const uint32_t lights = uint32_t(settings_.light_samples_per_vertex);
@@ -226,19 +238,22 @@ uint64_t Sampler::zsobol_index(const PixelSample& s, uint32_t dimension) const {
     const int bits = t.morton_bits + t.sample_bits;
     const uint64_t code = (uint64_t(morton_code(s.x, s.y)) << t.sample_bits) | s.index;
     const int lone = bits & 1;  // an odd count leaves one base-2 digit at the bottom
-    const uint64_t key = hash_values(settings_.seed, dimension, 0x5A536Full);
+    const uint64_t key = dimension < kCachedKeys ? t.index_keys[dimension] : zsobol_key(dimension, 0);
     uint64_t out = 0;
     // From the first digit down, each base-4 digit is permuted by one of
     // the 24 permutations, chosen by a hash of the digits above it: a
     // random nested permutation of the pixels' Morton order and of the
     // samples within each pixel.
+    // One mix per digit (the hot path): the prefix with a marker bit above
+    // it, so that prefixes of different lengths never collide.
     for (int shift = bits - 2; shift >= lone; shift -= 2) {
         uint64_t digit = (code >> shift) & 3;
-        uint64_t higher = code >> (shift + 2);
-        const auto& p = t.base4.table[hash_values(key, higher, uint64_t(shift)) % 24];
+        uint64_t prefix = (code >> (shift + 2)) | (uint64_t(1) << (bits - shift - 2));
+        uint64_t h = mix_bits(key ^ (prefix * 0x9E3779B97F4A7C15ull));
+        const auto& p = t.base4.table[(uint32_t(h) * uint64_t(24)) >> 32];
         out |= uint64_t(p[digit]) << shift;
     }
-    if (lone) out |= (code & 1) ^ (hash_values(key, code >> 1) & 1);
+    if (lone) out |= (code & 1) ^ (mix_bits(key ^ ((code >> 1) * 0xD1B54A32D192ED03ull)) & 1);
     return out;
 }
 
@@ -265,7 +280,7 @@ double Sampler::get_1d(const PixelSample& s, uint32_t dimension) const {
             return binary_fraction(owen_scramble(uint32_t(sobol_dimension0(index) >> 32), uint32_t(key)));
         }
         case SamplerKind::zsobol: {
-            uint64_t key = hash_values(settings_.seed, dimension, 0x5A316Eull);
+            uint64_t key = dimension < kCachedKeys ? tables_->scramble_keys_1d[dimension] : zsobol_key(dimension, 1);
             return binary_fraction(owen_scramble(uint32_t(sobol_dimension0(zsobol_index(s, dimension)) >> 32), uint32_t(key)));
         }
     }
@@ -291,7 +306,8 @@ Vec2 Sampler::get_2d(const PixelSample& s, uint32_t dimension) const {
             return padded_sobol_2d(index, hash_values(key));
         }
         case SamplerKind::zsobol:
-            return padded_sobol_2d(zsobol_index(s, dimension), hash_values(settings_.seed, dimension, 0x5A326Eull));
+            return padded_sobol_2d(zsobol_index(s, dimension),
+                                   dimension < kCachedKeys ? tables_->scramble_keys_2d[dimension] : zsobol_key(dimension, 2));
     }
     uint64_t h = hash_values(s.pixel_key, s.index, dimension);
     return {uniform_from_hash(h), double(uint32_t(h)) * 0x1p-32};

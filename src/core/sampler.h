@@ -125,6 +125,8 @@ private:
     double halton_value(const PixelSample& sample, uint32_t dimension) const;
     uint32_t sobol_pixel_fraction(const PixelSample& sample, int axis) const;
     uint64_t zsobol_index(const PixelSample& sample, uint32_t dimension) const;
+    /// zsobol's hash key of a dimension: 0 the index permutation, 1 and 2 the scrambles of 1D and 2D draws.
+    uint64_t zsobol_key(uint32_t dimension, int purpose) const;
     Vec2 padded_sobol_2d(uint64_t index, uint64_t key) const;
 
     SamplerSettings settings_;
