@@ -16,6 +16,11 @@ if(NOT tinyobjloader_FOUND)
   pt_missing("tinyobjloader (OBJ reader)" libtinyobjloader-dev)
 endif()
 
+find_package(tinyexr QUIET)
+if(NOT tinyexr_FOUND)
+  pt_missing("tinyexr (OpenEXR images)" libtinyexr-dev)
+endif()
+
 find_path(STB_INCLUDE_DIR stb_image_write.h PATH_SUFFIXES stb)
 find_library(STB_LIBRARY stb)
 if(NOT STB_INCLUDE_DIR OR NOT STB_LIBRARY)

@@ -35,6 +35,10 @@ images=(
   "whitted.png|-r 320 240 -s 16 assets/scenes/whitted.json"
   "whitted_path.png|-r 320 240 -s 256 -m 8 assets/scenes/whitted.json"
   "adaptive_cbox.png|-r 256 256 -s 1024 -a 32 0.05 assets/scenes/cbox.json"
+  "glossy.png|-r 640 256 -s 64 -m 8 assets/scenes/glossy.json"
+  "textures.png|-r 512 256 -s 64 -m 4 assets/scenes/textures.json"
+  "camera_orthographic.png|-r 256 256 -s 64 -m 4 assets/scenes/camera_orthographic.json"
+  "camera_fisheye.png|-r 256 256 -s 64 -m 4 assets/scenes/camera_fisheye.json"
 )
 for m in 0 1 2 3 4 5; do
   images+=("cbox_m${m}_o1.png|-r 128 128 -s 256 -m $m assets/scenes/cbox.json")
@@ -42,6 +46,9 @@ for m in 0 1 2 3 4 5; do
 done
 for rr in off 3 1 0; do
   images+=("cbox_rr_${rr}.png|-r 128 128 -s 64 -m 100000 --rr-depth $rr assets/scenes/cbox.json")
+done
+for t in clamp reinhard filmic local; do
+  images+=("tonemap_$t.png|-r 256 128 -s 64 -m 8 --exposure 1 --tonemap $t assets/scenes/materials.json")
 done
 
 wanted() {

@@ -15,7 +15,7 @@ USAGE
     exit 0 ;;
 esac
 
-packages=(cmake g++ make libstb-dev libtinyobjloader-dev doctest-dev nlohmann-json3-dev "$@")
+packages=(cmake g++ make libstb-dev libtinyobjloader-dev libtinyexr-dev doctest-dev nlohmann-json3-dev "$@")
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -1,5 +1,5 @@
 // imgdiff: compares an image with a reference (PNG decoded to linear, or
-// PFM) and prints RMSE, relMSE, PSNR, mean absolute difference and the
+// PFM or EXR) and prints RMSE, relMSE, PSNR, mean absolute difference and the
 // share of pixels over a threshold (image/metrics.h); writes a false-colour
 // heat map; exits 0 or 1 against --max-relmse / --max-rmse.
 //
@@ -47,7 +47,7 @@ const char* kUsage =
     "usage: imgdiff A B [--heatmap FILE.png] [--max-relmse X] [--max-rmse X] [--threshold T]\n"
     "       imgdiff --dir A/ B/ [--heatmap-dir DIR] [--max-relmse X] [--max-rmse X] [--threshold "
     "T]\n"
-    "Compares A with the reference B (PNG, decoded from sRGB to linear, or PFM).\n"
+    "Compares A with the reference B (PNG, decoded from sRGB to linear, or PFM or EXR).\n"
     "  --heatmap FILE.png    write the per-pixel relMSE as a viridis heat map (log scale 1e-4 .. "
     "1)\n"
     "  --heatmap-dir DIR     with --dir: one heat map per file, same names\n"
@@ -55,7 +55,7 @@ const char* kUsage =
     "  --max-rmse X          exit 1 when RMSE > X\n"
     "  --threshold T         a pixel is 'over' when a channel differs by more than T (linear) "
     "[0.01]\n"
-    "  --dir                 compare the PNG and PFM files of two folders by file name\n"
+    "  --dir                 compare the PNG, PFM and EXR files of two folders by file name\n"
     "relMSE = mean over pixels and channels of (A - B)^2 / (B^2 + 0.01).\n"
     "Exit codes: 0 within limits, 1 over a limit or a file missing, 2 bad input.\n";
 
@@ -102,8 +102,8 @@ Image read_checked(const std::string& path) {
     if (fs::is_directory(path, ec))
         throw InputError(path + ": is a folder (use --dir to compare folders)");
     std::string ext = file_extension(path);
-    if (ext != ".png" && ext != ".pfm")
-        throw InputError(path + ": not a PNG or PFM image (extension '" + ext + "')");
+    if (ext != ".png" && ext != ".pfm" && ext != ".exr")
+        throw InputError(path + ": not a PNG, PFM or EXR image (extension '" + ext + "')");
     return read_image(path);
 }
 
@@ -175,14 +175,14 @@ int compare_pair(const ImgdiffOptions& o) {
     return kExitOk;
 }
 
-/// File names of the PNG and PFM images directly inside `dir`.
+/// File names of the PNG, PFM and EXR images directly inside `dir`.
 std::set<std::string> images_in(const std::string& dir) {
     std::error_code ec;
     if (!fs::is_directory(dir, ec)) throw InputError(dir + ": no such folder");
     std::set<std::string> names;
     for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
         std::string ext = file_extension(e.path().string());
-        if (e.is_regular_file() && (ext == ".png" || ext == ".pfm"))
+        if (e.is_regular_file() && (ext == ".png" || ext == ".pfm" || ext == ".exr"))
             names.insert(e.path().filename().string());
     }
     if (ec) throw InputError(dir + ": cannot list the folder: " + ec.message());
@@ -196,7 +196,7 @@ int compare_dirs(const ImgdiffOptions& o) {
     std::set<std::string> all(a.begin(), a.end());
     all.insert(b.begin(), b.end());
     if (all.empty())
-        throw InputError(da + " and " + db + ": no PNG or PFM images in either folder");
+        throw InputError(da + " and " + db + ": no PNG, PFM or EXR images in either folder");
     if (!o.heatmap_dir.empty()) {
         std::error_code ec;
         fs::create_directories(o.heatmap_dir, ec);

@@ -60,10 +60,17 @@ std::vector<FlagSpec> flag_table() {
         {{"-d"}, 1, [](Options& o, S f, V v) { o.focal_distance = parse_real_number(f, v[0], 0, 1e300, true); }},
         {{"--seed"}, 1, [](Options& o, S f, V v) { o.render.seed = uint64_t(parse_whole_number(f, v[0], 0, (1ll << 62))); }},
         {{"--hdr"}, 1, [](Options& o, S f, V v) {
-             if (v[0].size() < 4 || v[0].substr(v[0].size() - 4) != ".pfm")
-                 throw InputError(f + ": expected a file name ending in .pfm, got '" + v[0] + "'");
+             std::string ext = v[0].size() >= 4 ? v[0].substr(v[0].size() - 4) : "";
+             if (ext != ".pfm" && ext != ".exr")
+                 throw InputError(f + ": expected a file name ending in .pfm or .exr, got '" + v[0] + "'");
              o.hdr_output = v[0];
          }},
+        {{"--tonemap"}, 1, [](Options& o, S f, V v) {
+             std::string t = one_of(f, v[0], {"clamp", "reinhard", "filmic", "local"});
+             for (ToneMap m : {ToneMap::clamp, ToneMap::reinhard, ToneMap::filmic, ToneMap::local})
+                 if (t == to_string(m)) o.display.tone_map = m;
+         }},
+        {{"--exposure"}, 1, [](Options& o, S f, V v) { o.display.exposure = parse_real_number(f, v[0], -64, 64); }},
         {{"--accel"}, 1, [](Options& o, S f, V v) { o.accelerator.use_bvh = one_of(f, v[0], {"none", "bvh"}) == "bvh"; }},
         {{"--integrator"}, 1, [](Options& o, S f, V v) {
              std::string k = one_of(f, v[0], {"auto", "normals", "depth", "whitted", "direct", "path"});
@@ -155,7 +162,8 @@ Options parse_options(const std::vector<std::string>& args, StageSet default_stu
     if (o.scene_path.empty()) throw InputError("no scene given (usage: [options] SCENE.json|MESH.obj; see --help)");
     if (!o.output.empty()) {
         std::string ext = o.output.size() >= 4 ? o.output.substr(o.output.size() - 4) : "";
-        if (ext != ".png") throw InputError("-f: expected a file name ending in .png, got '" + o.output + "'");
+        if (ext != ".png" && ext != ".exr")
+            throw InputError("-f: expected a file name ending in .png or .exr, got '" + o.output + "'");
     }
     return o;
 }
@@ -169,14 +177,16 @@ std::string usage(const std::string& program, StageSet default_student) {
       << "  -t N            threads                                                [all hardware threads]\n"
       << "  -m N            maximum ray depth (bounces)                            [1]\n"
       << "  -o 0|1          accumulate bounces (1) or only the m-th bounce (0)     [1]\n"
-      << "  -e FILE         environment map (.hdr or .pfm, lat-long)\n"
-      << "  -f FILE.png     output image                                           [<scene name>.png]\n"
+      << "  -e FILE         environment map (.hdr, .pfm or .exr, lat-long)\n"
+      << "  -f FILE.png|FILE.exr  output image (.exr: linear, not tone mapped)     [<scene name>.png]\n"
       << "  -r W H          resolution                                             [scene film, else 480 360]\n"
       << "  -p X Y DX DY    render only that cell (other pixels stay black)\n"
       << "  -H              hemisphere sampling for direct light (= --direct hemisphere)\n"
       << "  -b R, -d D      thin lens: lens radius, focal distance                 [pinhole]\n"
       << "  --seed N        random seed; same seed, same image at any -t           [0]\n"
-      << "  --hdr FILE.pfm  also write the linear image\n"
+      << "  --hdr FILE.pfm|FILE.exr  also write the linear image\n"
+      << "  --tonemap clamp|reinhard|filmic|local  display transform of the PNG      [clamp]\n"
+      << "  --exposure EV   scale the PNG's radiance by 2^EV before tone mapping   [0]\n"
       << "  --accel none|bvh                                                       [bvh]\n"
       << "  --integrator auto|normals|depth|whitted|direct|path                    [auto]\n"
       << "  --student LIST  stages with student code: camera,intersect,bvh,direct,global,adaptive,sampler,\n"

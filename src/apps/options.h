@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "image/tone_map.h"
 #include "render/renderer.h"
 #include "stages/settings.h"
 #include "stages/stage_set.h"
@@ -24,8 +25,9 @@ struct Options {
     AcceleratorSettings accelerator;   ///< --accel --bvh-split --max-leaf
     StageSet student;                  ///< --student
     int threads = 1;                   ///< -t (default: all hardware threads)
-    std::string output;                ///< -f; empty = "<scene name>.png"
-    std::string hdr_output;            ///< --hdr FILE.pfm
+    std::string output;                ///< -f FILE.png|FILE.exr; empty = "<scene name>.png"
+    std::string hdr_output;            ///< --hdr FILE.pfm|FILE.exr
+    DisplaySettings display;           ///< --tonemap, --exposure (the PNG only)
     std::string stats_output;          ///< --stats FILE.json
     std::string environment_map;       ///< -e FILE
     std::optional<std::pair<int, int>> resolution;  ///< -r W H

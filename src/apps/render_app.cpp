@@ -11,7 +11,9 @@
 #include "core/files.h"
 #include "core/progress.h"
 #include "core/timer.h"
+#include "image/exr_io.h"
 #include "image/image_io.h"
+#include "image/tone_map.h"
 #include "render/bvh_view.h"
 #include "render/integrators.h"
 #include "stages/render_context.h"
@@ -51,8 +53,8 @@ void apply_scene_overrides(Scene& scene, const Options& options) {
     if (!options.environment_map.empty()) {
         require_readable_file(options.environment_map, "-e");
         std::string ext = file_extension(options.environment_map);
-        if (ext != ".hdr" && ext != ".pfm")
-            throw InputError("-e: expected a .hdr or .pfm lat-long map, got '" + options.environment_map + "'");
+        if (ext != ".hdr" && ext != ".pfm" && ext != ".exr")
+            throw InputError("-e: expected a .hdr, .pfm or .exr lat-long map, got '" + options.environment_map + "'");
         EnvironmentLight env;
         env.file = options.environment_map;
         scene.environment = env;
@@ -226,11 +228,15 @@ int run(const std::vector<std::string>& args, const std::string& program, StageS
     RenderResult result = render_image(context, render_options);
     seconds.render = result.seconds;
 
-    write_png(result.image, options.output);
-    if (!options.hdr_output.empty()) write_pfm(result.image, options.hdr_output);
+    // The PNG shows the display transform (--tonemap, --exposure); EXR and
+    // PFM keep the linear radiance.
+    if (file_extension(options.output) == ".exr") write_exr(result.image, options.output);
+    else write_png(options.display.is_identity() ? result.image : tone_map(result.image, options.display), options.output);
+    if (!options.hdr_output.empty()) write_image(result.image, options.hdr_output);
     std::string written = options.output;
     if (options.render.adaptive) {
         std::string rate_path = rate_image_path(options.output);
+        if (file_extension(rate_path) != ".png") rate_path = rate_path.substr(0, rate_path.size() - 4) + ".png";
         write_png(make_sample_rate_image(result.sample_counts, scene.film_width, scene.film_height), rate_path);
         written += ", " + rate_path;
     }

@@ -27,6 +27,20 @@ struct Frame {
         t = Vec3(b, sign + n.y * n.y * a, -n.y);
     }
 
+    /// The frame about `normal` whose first tangent s is `tangent` made
+    /// perpendicular to it (Gram-Schmidt); the normal-only frame when the
+    /// tangent is parallel to the normal or zero.
+    static Frame with_tangent(const Vec3& normal, const Vec3& tangent) {
+        Vec3 s = tangent - normal * dot(normal, tangent);
+        double len = s.norm();
+        if (!(len > 1e-12 * tangent.norm()) || !std::isfinite(len)) return Frame(normal);
+        Frame f;
+        f.n = normal;
+        f.s = s / len;
+        f.t = cross(normal, f.s);
+        return f;
+    }
+
     Vec3 to_local(const Vec3& w) const { return {dot(w, s), dot(w, t), dot(w, n)}; }
     Vec3 to_world(const Vec3& w) const { return s * w.x + t * w.y + n * w.z; }
 };

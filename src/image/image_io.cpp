@@ -15,6 +15,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "image/exr_io.h"
 #include "image/tonemap.h"
 
 namespace pt {
@@ -87,7 +88,8 @@ void write_image(const Image& image, const std::string& path) {
     if (ext == ".png") return write_png(image, path);
     if (ext == ".pfm") return write_pfm(image, path);
     if (ext == ".hdr") return write_hdr(image, path);
-    throw InputError(path + ": unknown image type '" + ext + "' (expected .png, .pfm or .hdr)");
+    if (ext == ".exr") return write_exr(image, path);
+    throw InputError(path + ": unknown image type '" + ext + "' (expected .png, .pfm, .hdr or .exr)");
 }
 
 Image read_png(const std::string& path) {
@@ -169,7 +171,8 @@ Image read_image(const std::string& path) {
     if (ext == ".png") return read_png(path);
     if (ext == ".pfm") return read_pfm(path);
     if (ext == ".hdr") return read_hdr(path);
-    throw InputError(path + ": unknown image type '" + ext + "' (expected .png, .pfm or .hdr)");
+    if (ext == ".exr") return read_exr(path);
+    throw InputError(path + ": unknown image type '" + ext + "' (expected .png, .pfm, .hdr or .exr)");
 }
 
 }  // namespace pt

@@ -5,7 +5,7 @@
 #include "core/sampling.h"
 #include "scene/fresnel.h"
 #include "scene/material.h"
-#include "scene/microfacet.h"
+#include "scene/microfacet_bsdf.h"
 
 namespace pt {
 namespace {
@@ -15,31 +15,29 @@ namespace {
 /// vanishing share of light (measure zero for wo drawn at random).
 constexpr double kMinDeltaCosine = 1e-12;
 
-double alpha_of(const Material& m) {
-    return std::max(m.roughness, ggx::kMinAlpha);
-}
-
-/// The microfacet conductor: F(wo . m) D(m) G2 / (4 cos_o cos_i), reflection only.
-Color microfacet_f(const Material& m, const Vec3& wo, const Vec3& wi) {
-    if (wo.z <= 0 || wi.z <= 0) return Color(0);
-    Vec3 h = wo + wi;
-    double len = h.norm();
-    if (!(len > 0)) return Color(0);
-    Vec3 half = h / len;
-    double alpha = alpha_of(m);
-    double d_g = ggx::D(half, alpha) * ggx::G2(wo, wi, alpha);
-    if (!(d_g > 0)) return Color(0);
-    return fresnel_conductor(dot(wo, half), m.eta, m.k) * (d_g / (4.0 * wo.z * wi.z));
+/// A third uniform number from the low-order digits of u: u = (i + f) / 2^16
+/// with f uniform and independent of i, and sampling that depends on u only
+/// through i to within 2^-16. The rough dielectric needs three numbers (two
+/// for the facet, one for reflect-or-refract) where sample_f's contract,
+/// which students call, has two; PCG32's 32-bit numbers leave 16 bits for f.
+double low_digits(double u) {
+    double v = u * 65536.0;
+    return v - std::floor(v);
 }
 
 }  // namespace
 
+BSDF::BSDF(const Material& material, const Frame& frame, DiffuseRoutines diffuse)
+    : material_(&material), frame_(frame), diffuse_(diffuse), albedo_(material.albedo) {}
+
 Color BSDF::f(const Vec3& wo, const Vec3& wi) const {
     switch (material_->type) {
         case MaterialType::diffuse:
-            return diffuse_.f(material_->albedo, wo, wi);
+            return diffuse_.f(albedo_, wo, wi);
         case MaterialType::microfacet:
-            return microfacet_f(*material_, wo, wi);
+            return rough_conductor_f(*material_, wo, wi);
+        case MaterialType::rough_dielectric:
+            return rough_dielectric_f(*material_, wo, wi);
         case MaterialType::mirror:
         case MaterialType::glass:
             break;  // deltas: f is zero for every given pair
@@ -78,23 +76,17 @@ int BSDF::delta_lobes(const Vec3& wo, DeltaLobe lobes[2]) const {
 }
 
 BSDFSample BSDF::sample_f(const Vec3& wo, Vec2 u) const {
+    return sample_f(wo, u, low_digits(u.y));
+}
+
+BSDFSample BSDF::sample_f(const Vec3& wo, Vec2 u, double uc) const {
     switch (material_->type) {
         case MaterialType::diffuse:
-            return diffuse_.sample_f(material_->albedo, wo, u);
-        case MaterialType::microfacet: {
-            BSDFSample s;
-            if (wo.z <= 0) return s;
-            double alpha = alpha_of(*material_);
-            Vec3 half = ggx::sample_visible_normal(wo, alpha, u);
-            s.wi = ggx::reflect(wo, half);
-            // Reflected below the surface: the facet is hidden from wi (no sample).
-            if (s.wi.z <= 0) return {};
-            s.wi = s.wi.unit();
-            s.pdf = ggx::reflection_pdf(wo, s.wi, alpha);
-            if (!(s.pdf > 0) || !std::isfinite(s.pdf)) return {};
-            s.f = microfacet_f(*material_, wo, s.wi);
-            return s;
-        }
+            return diffuse_.sample_f(albedo_, wo, u);
+        case MaterialType::microfacet:
+            return rough_conductor_sample_f(*material_, wo, u);
+        case MaterialType::rough_dielectric:
+            return rough_dielectric_sample_f(*material_, wo, u, uc);
         case MaterialType::mirror:
         case MaterialType::glass:
             break;
@@ -125,13 +117,17 @@ double BSDF::pdf(const Vec3& wo, const Vec3& wi) const {
         case MaterialType::diffuse:
             return wi.z > 0 ? cosine_hemisphere_pdf(wi.z) : 0.0;
         case MaterialType::microfacet:
-            return ggx::reflection_pdf(wo, wi, alpha_of(*material_));
+            return rough_conductor_pdf(*material_, wo, wi);
+        case MaterialType::rough_dielectric:
+            return rough_dielectric_pdf(*material_, wo, wi);
         case MaterialType::mirror:
         case MaterialType::glass:
             break;
     }
     return 0.0;
 }
+
+bool BSDF::is_transmissive() const { return material_->type == MaterialType::rough_dielectric; }
 
 bool BSDF::is_delta() const {
     return material_->type == MaterialType::mirror || material_->type == MaterialType::glass;

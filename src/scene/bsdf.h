@@ -29,9 +29,13 @@
 //               (n_o / n_i)^2, n_o and n_i the indices on wo's and wi's sides
 //               (radiance is compressed into the denser medium; pbrt-v3
 //               section 8.2.3, Veach 1997 section 5.2).
-//   microfacet  rough conductor: GGX distribution, height-correlated Smith
-//               shadowing, conductor Fresnel, sampled by visible normals
-//               (microfacet.h). Reflection only.
+//   microfacet  rough conductor: GGX (sampled by visible normals), Beckmann
+//               or normalised Blinn-Phong facets, anisotropic roughness,
+//               height-correlated Smith shadowing, conductor Fresnel
+//               (microfacet_distribution.h, microfacet_bsdf.h). Reflection only.
+//   rough_dielectric  rough glass (Walter et al. 2007): reflection and
+//               refraction through the facets, any of the three
+//               distributions; keeps the stored normal, like glass.
 //
 // One BSDF is built per hit, from the Material and the shading frame, by
 // RenderContext::bsdf_at (stages/render_context.h), which also decides on
@@ -89,10 +93,13 @@ struct DiffuseRoutines {
 class BSDF {
   public:
     /// The BSDF of `material` at a point whose local shading frame is `frame`.
-    BSDF(const Material& material, const Frame& frame, DiffuseRoutines diffuse)
-        : material_(&material), frame_(frame), diffuse_(diffuse) {}
+    BSDF(const Material& material, const Frame& frame, DiffuseRoutines diffuse);
+    /// The same, with the diffuse albedo found at the point (a texture's value).
+    BSDF(const Material& material, const Frame& frame, DiffuseRoutines diffuse, const Color& albedo)
+        : material_(&material), frame_(frame), diffuse_(diffuse), albedo_(albedo) {}
     /// The BSDF keeps a pointer to its material: a temporary would dangle.
     BSDF(Material&& material, const Frame& frame, DiffuseRoutines diffuse) = delete;
+    BSDF(Material&& material, const Frame& frame, DiffuseRoutines diffuse, const Color& albedo) = delete;
 
     /// World-space direction to the local frame, and back.
     Vec3 to_local(const Vec3& w) const { return frame_.to_local(w); }
@@ -104,10 +111,17 @@ class BSDF {
     Color f(const Vec3& wo, const Vec3& wi) const;
     /// A direction wi for wo, drawn with u in [0, 1)^2 (see the file comment).
     BSDFSample sample_f(const Vec3& wo, Vec2 u) const;
+    /// The same with a third uniform number uc for the choice between
+    /// reflection and refraction of the rough dielectric (the two-number
+    /// form takes it from u's low-order digits; other BSDFs ignore uc).
+    BSDFSample sample_f(const Vec3& wo, Vec2 u, double uc) const;
     /// The density with which sample_f(wo, .) draws wi; 0 for a delta BSDF.
     double pdf(const Vec3& wo, const Vec3& wi) const;
     /// Whether the BSDF is a Dirac delta (mirror, glass): no light sample can reach it.
     bool is_delta() const;
+    /// Whether a non-delta BSDF also scatters into the lower hemisphere
+    /// (rough dielectric): light samples must then come from both sides.
+    bool is_transmissive() const;
     /// The directions a delta BSDF scatters wo into, written to `lobes`:
     /// 1 for a mirror, 2 for glass (reflection first, then refraction), 1
     /// for glass under total internal reflection; 0 for a non-delta BSDF.
@@ -117,6 +131,7 @@ class BSDF {
     const Material* material_;  ///< never null
     Frame frame_;               ///< local shading frame; +z is the (oriented) shading normal
     DiffuseRoutines diffuse_;   ///< student or reference Lambertian routines
+    Color albedo_;              ///< diffuse reflectance at this point (the material's, or its texture's)
 };
 
 }  // namespace pt

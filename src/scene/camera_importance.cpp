@@ -29,12 +29,47 @@ double cos_to_axis(const Camera& camera, const Vec3& w) { return -dot(w, camera.
 }  // namespace
 
 std::string camera_importance_missing(const Camera& camera) {
-    // Every camera today is perspective (pinhole or thin lens), which has one.
-    (void)camera;
+    // The perspective camera (pinhole or thin lens) has one; the orthographic
+    // camera's rays are parallel (a delta in direction) and the fisheye's
+    // importance is not written yet.
+    if (camera.type == CameraType::orthographic) return "the orthographic camera has no importance function";
+    if (camera.type == CameraType::fisheye) return "the fisheye camera has no importance function";
     return "";
 }
 
+namespace {
+
+/// Image coordinates, or nothing off the film.
+std::optional<Vec2> on_film(double x, double y) {
+    if (!(x >= 0 && x <= 1 && y >= 0 && y <= 1)) return std::nullopt;
+    return Vec2(x, y);
+}
+
+/// orthographic_ray backwards: a ray along the view axis from a point of
+/// the film rectangle (scene/camera.cpp).
+std::optional<Vec2> orthographic_film_position(const Camera& camera, const Vec3& p_film, const Vec3& w) {
+    if (!(dot(w, camera.backward) < -1.0 + 1e-12)) return std::nullopt;  // not along the axis
+    Vec3 o = to_camera(camera, p_film - camera.position);
+    return on_film(0.5 * (o.x / (0.5 * camera.height * camera.aspect) + 1.0), 0.5 * (o.y / (0.5 * camera.height) + 1.0));
+}
+
+/// fisheye_ray backwards: the angle theta off the axis is r fov / 2.
+std::optional<Vec2> fisheye_film_position(const Camera& camera, const Vec3& w) {
+    Vec3 d = to_camera(camera, w);
+    double theta = std::acos(clamp(-d.z / d.norm(), -1.0, 1.0));
+    double r = theta / (radians(camera.fov) * 0.5);
+    if (!(r <= 1.0)) return std::nullopt;  // outside the image circle
+    double rho = std::hypot(d.x, d.y);
+    Vec2 s = fisheye_disk_scale(camera);
+    double px = rho > 0 ? r * d.x / rho : 0.0, py = rho > 0 ? r * d.y / rho : 0.0;
+    return on_film(0.5 * (px / s.x + 1.0), 0.5 * (py / s.y + 1.0));
+}
+
+}  // namespace
+
 std::optional<Vec2> camera_film_position(const Camera& camera, const Vec3& p_lens, const Vec3& w) {
+    if (camera.type == CameraType::orthographic) return orthographic_film_position(camera, p_lens, w);
+    if (camera.type == CameraType::fisheye) return fisheye_film_position(camera, w);
     Vec3 d = to_camera(camera, w);
     double cos_theta = -d.z;
     if (!(cos_theta > 0)) return std::nullopt;  // behind the lens, or in its plane
@@ -51,6 +86,7 @@ std::optional<Vec2> camera_film_position(const Camera& camera, const Vec3& p_len
 }
 
 double camera_We(const Camera& camera, const Vec3& p_lens, const Vec3& w, Vec2* film) {
+    if (!camera_importance_missing(camera).empty()) return 0.0;
     std::optional<Vec2> at = camera_film_position(camera, p_lens, w);
     if (!at) return 0.0;
     if (film) *film = *at;
@@ -59,6 +95,7 @@ double camera_We(const Camera& camera, const Vec3& p_lens, const Vec3& w, Vec2* 
 }
 
 CameraRayPdf camera_pdf_We(const Camera& camera, const Vec3& p_lens, const Vec3& w) {
+    if (!camera_importance_missing(camera).empty()) return {};
     if (!camera_film_position(camera, p_lens, w)) return {};
     double cos_theta = cos_to_axis(camera, w);
     return {1.0 / lens_area(camera), 1.0 / (film_area(camera) * cos_theta * cos_theta * cos_theta)};

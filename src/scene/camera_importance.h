@@ -51,7 +51,10 @@ std::string camera_importance_missing(const Camera& camera);
 
 /// Where the ray leaving lens point p_lens in unit world direction w lands
 /// on the film, in normalised image coordinates, or nothing when it misses
-/// the film or points behind the camera.
+/// the film or points behind the camera. Every camera type: for the
+/// orthographic camera p_lens is a point of its film rectangle and w the
+/// view direction; for the fisheye only w matters (outside its image
+/// circle: nothing).
 std::optional<Vec2> camera_film_position(const Camera& camera, const Vec3& p_lens, const Vec3& w);
 
 /// The importance We emitted along the ray leaving p_lens in unit direction

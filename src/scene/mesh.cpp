@@ -13,6 +13,11 @@ void add_mesh(Scene& scene, const MeshData& mesh, const Transform& transform) {
     for (const Vec3& p : mesh.positions) scene.positions.push_back(transform.point(p));
     for (const Vec3& n : mesh.normals) scene.normals.push_back(transform.normal(n));
     bool smooth = !mesh.face_normals.empty();
+    // Texture coordinates are kept only once some mesh has them.
+    const uint32_t uv_base = uint32_t(scene.uvs.size());
+    const bool keep_uvs = !mesh.face_uvs.empty() || !scene.triangle_uvs.empty();
+    if (keep_uvs) scene.triangle_uvs.resize(scene.triangles.size(), {kNoIndex, kNoIndex, kNoIndex});
+    scene.uvs.insert(scene.uvs.end(), mesh.uvs.begin(), mesh.uvs.end());
     for (size_t f = 0; f < mesh.faces.size(); ++f) {
         TriangleRecord r;
         for (int k = 0; k < 3; ++k) {
@@ -21,6 +26,12 @@ void add_mesh(Scene& scene, const MeshData& mesh, const Transform& transform) {
         }
         r.material = mesh.face_materials.empty() ? mesh.material : mesh.face_materials[f];
         scene.triangles.push_back(r);
+        if (keep_uvs) {
+            std::array<uint32_t, 3> uv = {kNoIndex, kNoIndex, kNoIndex};
+            if (!mesh.face_uvs.empty() && mesh.face_uvs[f][0] != kNoIndex)
+                for (int k = 0; k < 3; ++k) uv[k] = uv_base + mesh.face_uvs[f][k];
+            scene.triangle_uvs.push_back(uv);
+        }
     }
 }
 

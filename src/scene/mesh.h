@@ -19,6 +19,8 @@ struct MeshData {
     std::vector<Vec3> normals;                    ///< object space, unit; may be empty
     std::vector<std::array<uint32_t, 3>> faces;   ///< indices into positions
     std::vector<std::array<uint32_t, 3>> face_normals;  ///< indices into normals; empty = flat
+    std::vector<Vec2> uvs;                        ///< texture coordinates; may be empty
+    std::vector<std::array<uint32_t, 3>> face_uvs;  ///< indices into uvs (kNoIndex: none); empty = none
     std::vector<uint32_t> face_materials;         ///< scene material per face; empty = `material`
     uint32_t material = 0;                        ///< scene material of every face otherwise
 };

@@ -70,11 +70,13 @@ inline double G2(const Vec3& wo, const Vec3& wi, double alpha) {
     return 1.0 / (1.0 + lambda(wo, alpha) + lambda(wi, alpha));
 }
 
-/// A half vector m drawn from the visible normals D_wo (wo.z > 0), u in [0, 1)^2.
-inline Vec3 sample_visible_normal(const Vec3& wo, double alpha, Vec2 u) {
+/// A half vector m drawn from the visible normals D_wo (wo.z > 0), u in
+/// [0, 1)^2, for roughness ax along x and ay along y (anisotropic GGX,
+/// microfacet_distribution.h; ax = ay is the isotropic case).
+inline Vec3 sample_visible_normal(const Vec3& wo, double ax, double ay, Vec2 u) {
     // 1. Stretch wo to the alpha = 1 configuration, where visible normals
     //    are the hemisphere's projected onto the plane perpendicular to wo.
-    Vec3 v = Vec3(alpha * wo.x, alpha * wo.y, wo.z).unit();
+    Vec3 v = Vec3(ax * wo.x, ay * wo.y, wo.z).unit();
     // 2. An orthonormal basis (t1, t2, v); t1 is horizontal.
     double len2 = v.x * v.x + v.y * v.y;
     Vec3 t1 = len2 > 0 ? Vec3(-v.y, v.x, 0) / std::sqrt(len2) : Vec3(1, 0, 0);
@@ -88,7 +90,10 @@ inline Vec3 sample_visible_normal(const Vec3& wo, double alpha, Vec2 u) {
     p2 = (1.0 - s) * safe_sqrt(1.0 - p1 * p1) + s * p2;
     // 4. Lift onto the hemisphere about v, then unstretch.
     Vec3 n = p1 * t1 + p2 * t2 + safe_sqrt(1.0 - p1 * p1 - p2 * p2) * v;
-    return Vec3(alpha * n.x, alpha * n.y, std::max(0.0, n.z)).unit();
+    return Vec3(ax * n.x, ay * n.y, std::max(0.0, n.z)).unit();
+}
+inline Vec3 sample_visible_normal(const Vec3& wo, double alpha, Vec2 u) {
+    return sample_visible_normal(wo, alpha, alpha, u);
 }
 
 /// Solid-angle density of wi = reflect(wo, m) when m is drawn by

@@ -19,6 +19,7 @@
 #include "scene/microfacet.h"
 #include "scene/obj_scan.h"
 #include "scene/scene.h"
+#include "scene/texture.h"
 
 namespace pt {
 namespace {
@@ -80,17 +81,34 @@ std::string base_name(const std::string& path) {
     return slash == std::string::npos ? path : path.substr(slash + 1);
 }
 
+/// Image textures of one OBJ's materials, by file: one load per file.
+using TextureCache = std::map<std::string, std::shared_ptr<const Texture>>;
+
 Material to_material(const tinyobj::material_t& m, const std::string& prefix, bool has_ior,
-                     const std::string& where) {
+                     const std::string& directory, const std::string& where, TextureCache& textures) {
     Material mat;
     mat.name = prefix + m.name;
     mat.albedo = Color(m.diffuse[0], m.diffuse[1], m.diffuse[2]);
+    if (!m.diffuse_texname.empty()) {
+        // map_Kd: the diffuse albedo from an image; its "-s u v w" option scales (u, v).
+        std::string file = m.diffuse_texname[0] == '/' ? m.diffuse_texname : directory + m.diffuse_texname;
+        Vec2 scale(m.diffuse_texopt.scale[0], m.diffuse_texopt.scale[1]);
+        if (!(scale.x > 0 && scale.y > 0))
+            throw InputError(where + ": material '" + m.name + "': map_Kd -s must be > 0");
+        std::string key = file + " " + std::to_string(scale.x) + " " + std::to_string(scale.y);
+        auto it = textures.find(key);
+        if (it == textures.end())
+            it = textures.emplace(key, load_albedo_texture(file, where + ": material '" + m.name + "': map_Kd", scale)).first;
+        mat.albedo_texture = it->second;
+    }
     mat.emission = Color(m.emission[0], m.emission[1], m.emission[2]);
     if (m.illum == 3 || m.illum == 5) {
         mat.type = MaterialType::mirror;
         mat.reflectance = Color(m.specular[0], m.specular[1], m.specular[2]);
     } else if (m.illum == 4 || m.illum == 6 || m.illum == 7) {
-        mat.type = MaterialType::glass;
+        // Glass; with the PBR extension's roughness Pr > 0, rough glass of GGX alpha Pr.
+        mat.type = m.roughness > 0 ? MaterialType::rough_dielectric : MaterialType::glass;
+        mat.roughness = std::clamp(double(m.roughness), ggx::kMinAlpha, 1.0);
         // Without Ni, glass is 1.5 (tinyobjloader would say 1, which is no glass at all).
         mat.ior = has_ior ? m.ior : 1.5;
         if (!(mat.ior > 0))
@@ -155,21 +173,28 @@ MeshData read_obj(Scene& scene, const std::string& path, const ObjLoadOptions& o
 
     // The MTL's materials become scene materials named "mesh.obj:name".
     std::vector<uint32_t> scene_material(materials.size());
+    TextureCache textures;
     if (!options.material) {
         for (size_t m = 0; m < materials.size(); ++m) {
-            Material mat = to_material(materials[m], base_name(path) + ":", mtl_reader.has_ior(materials[m].name), where);
+            Material mat = to_material(materials[m], base_name(path) + ":", mtl_reader.has_ior(materials[m].name),
+                                       directory_of(path), where, textures);
             check_material(mat, where);
             scene_material[m] = uint32_t(scene.materials.size());
             scene.materials.push_back(mat);
         }
     }
 
+    const size_t uv_count = attrib.texcoords.size() / 2;
+    for (size_t i = 0; i < uv_count; ++i) mesh.uvs.push_back(Vec2(attrib.texcoords[2 * i], attrib.texcoords[2 * i + 1]));
+    bool any_uv = false;
+
     bool all_smooth = normal_count > 0;
     std::vector<std::array<uint32_t, 3>> face_normals;
     for (const tinyobj::shape_t& shape : shapes) {
         const std::vector<tinyobj::index_t>& idx = shape.mesh.indices;
         for (size_t f = 0; f + 2 < idx.size(); f += 3) {
-            std::array<uint32_t, 3> face, normals;
+            std::array<uint32_t, 3> face, normals, uvs;
+            bool has_uv = true;
             for (int k = 0; k < 3; ++k) {
                 const tinyobj::index_t& c = idx[f + k];
                 if (c.vertex_index < 0 || size_t(c.vertex_index) >= vertex_count)
@@ -180,12 +205,20 @@ MeshData read_obj(Scene& scene, const std::string& path, const ObjLoadOptions& o
                     throw InputError(where + ": face in '" + shape.name + "' uses normal " +
                                      std::to_string(c.normal_index + 1) + " but the file has " +
                                      std::to_string(normal_count));
+                if (c.texcoord_index >= 0 && size_t(c.texcoord_index) >= uv_count)
+                    throw InputError(where + ": face in '" + shape.name + "' uses texture coordinate " +
+                                     std::to_string(c.texcoord_index + 1) + " but the file has " +
+                                     std::to_string(uv_count));
+                uvs[k] = c.texcoord_index >= 0 ? uint32_t(c.texcoord_index) : kNoIndex;
+                has_uv = has_uv && c.texcoord_index >= 0;
                 face[k] = uint32_t(c.vertex_index);
                 normals[k] = c.normal_index >= 0 ? uint32_t(c.normal_index) : kNoIndex;
                 if (c.normal_index < 0) all_smooth = false;
             }
             mesh.faces.push_back(face);
             face_normals.push_back(normals);
+            mesh.face_uvs.push_back(has_uv ? uvs : std::array<uint32_t, 3>{kNoIndex, kNoIndex, kNoIndex});
+            any_uv = any_uv || has_uv;
 
             int material_id = shape.mesh.material_ids.empty() ? -1 : shape.mesh.material_ids[f / 3];
             uint32_t m;
@@ -205,6 +238,10 @@ MeshData read_obj(Scene& scene, const std::string& path, const ObjLoadOptions& o
     if (mesh.faces.empty()) throw InputError(where + ": the mesh has no faces");
     // Smooth shading only when every corner has a normal; a mix would need
     // per-face bookkeeping that no test mesh needs.
+    if (!any_uv) {
+        mesh.uvs.clear();
+        mesh.face_uvs.clear();
+    }
     if (all_smooth) mesh.face_normals = std::move(face_normals);
     else mesh.normals.clear();
     return mesh;

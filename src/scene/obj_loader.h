@@ -2,7 +2,10 @@
 //
 // MTL mapping (DESIGN.md): Kd -> diffuse albedo, Ke -> emission,
 // illum 3 or 5 -> mirror with reflectance Ks, illum 4, 6 or 7 -> glass with
-// index of refraction Ni. Polygons are triangulated on load.
+// index of refraction Ni, map_Kd -> an image texture for the diffuse albedo
+// (its -s option scales u and v), Pm > 0 -> a rough metal (docs/global.md).
+// Texture coordinates (vt) are kept for faces whose three corners have
+// them. Polygons are triangulated on load.
 #pragma once
 
 #include <optional>

@@ -1,5 +1,9 @@
 #include "scene/scene.h"
 
+#include <cmath>
+
+#include "core/math.h"
+
 namespace pt {
 
 const char* to_string(MaterialType type) {
@@ -8,6 +12,7 @@ const char* to_string(MaterialType type) {
         case MaterialType::mirror: return "mirror";
         case MaterialType::glass: return "glass";
         case MaterialType::microfacet: return "microfacet";
+        case MaterialType::rough_dielectric: return "rough_dielectric";
     }
     return "unknown";
 }
@@ -29,6 +34,42 @@ Triangle Scene::triangle(uint32_t prim) const {
 
 const Material& Scene::material_of(uint32_t prim) const {
     return materials[is_sphere(prim) ? sphere_record(prim).material : triangles[prim].material];
+}
+
+Vec2 Scene::uv_at(uint32_t prim, double b1, double b2, const Vec3& p) const {
+    if (is_sphere(prim)) {
+        const Sphere& s = sphere_record(prim).sphere;
+        Vec3 d = (p - s.center) / s.radius;
+        double phi = std::atan2(d.x, d.z);
+        if (phi < 0) phi += kTwoPi;
+        return {phi * kInvTwoPi, 1.0 - std::acos(clamp(d.y, -1.0, 1.0)) * kInvPi};
+    }
+    if (prim < triangle_uvs.size() && triangle_uvs[prim][0] != kNoIndex) {
+        const std::array<uint32_t, 3>& t = triangle_uvs[prim];
+        const double b0 = 1.0 - b1 - b2;
+        return {b0 * uvs[t[0]].x + b1 * uvs[t[1]].x + b2 * uvs[t[2]].x,
+                b0 * uvs[t[0]].y + b1 * uvs[t[1]].y + b2 * uvs[t[2]].y};
+    }
+    return {b1 + b2, b2};
+}
+
+Vec3 Scene::dpdu(uint32_t prim, const Vec3& p) const {
+    if (is_sphere(prim)) {
+        // The direction of growing longitude (uv_at's u) about +y.
+        Vec3 d = p - sphere_record(prim).sphere.center;
+        return Vec3(d.z, 0, -d.x);
+    }
+    Triangle t = triangle(prim);
+    Vec3 e1 = t.p1 - t.p0, e2 = t.p2 - t.p0;
+    if (prim < triangle_uvs.size() && triangle_uvs[prim][0] != kNoIndex) {
+        // Solve e1 = du1 dpdu + dv1 dpdv, e2 = du2 dpdu + dv2 dpdv for dpdu.
+        const std::array<uint32_t, 3>& uv = triangle_uvs[prim];
+        Vec2 d1(uvs[uv[1]].x - uvs[uv[0]].x, uvs[uv[1]].y - uvs[uv[0]].y);
+        Vec2 d2(uvs[uv[2]].x - uvs[uv[0]].x, uvs[uv[2]].y - uvs[uv[0]].y);
+        double det = d1.x * d2.y - d1.y * d2.x;
+        if (std::fabs(det) > 1e-12) return (e1 * d2.y - e2 * d1.y) / det;
+    }
+    return e1;
 }
 
 BBox Scene::primitive_bounds(uint32_t prim) const {

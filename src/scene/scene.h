@@ -3,6 +3,7 @@
 // Built by the loaders (scene_loader.h), then read-only while rendering.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -26,6 +27,9 @@ struct Scene {
     std::vector<Vec3> positions;             ///< mesh vertex positions, world space
     std::vector<Vec3> normals;               ///< mesh vertex normals, world space, unit
     std::vector<TriangleRecord> triangles;   ///< primitive ids 0 .. T-1
+    std::vector<Vec2> uvs;                   ///< mesh texture coordinates (OBJ vt, quad corners)
+    /// Per triangle, indices into `uvs` (kNoIndex: none); empty when no triangle has any.
+    std::vector<std::array<uint32_t, 3>> triangle_uvs;
     std::vector<SphereRecord> spheres;       ///< primitive ids T .. T+S-1
 
     std::vector<PointLight> point_lights;
@@ -43,6 +47,15 @@ struct Scene {
     /// The triangle with id `prim` (< triangles.size()) as the intersection routines see it.
     Triangle triangle(uint32_t prim) const;
     const Material& material_of(uint32_t prim) const;
+    /// Texture coordinates of the point p with barycentrics (b1, b2) on
+    /// primitive `prim`: interpolated vt for triangles that have them, else
+    /// (b1 + b2, b2) (pbrt's default (0,0), (1,0), (1,1) corners); on a sphere,
+    /// u the longitude about +y from +z, v = 1 at the top pole, 0 at the bottom.
+    Vec2 uv_at(uint32_t prim, double b1, double b2, const Vec3& p) const;
+    /// The surface's first tangent at p, dp/du (not unit): the x axis of an
+    /// anisotropic BSDF's frame. A triangle without texture coordinates
+    /// gives its first edge; a sphere the direction of growing longitude.
+    Vec3 dpdu(uint32_t prim, const Vec3& p) const;
     BBox primitive_bounds(uint32_t prim) const;
     double primitive_area(uint32_t prim) const;
     bool has_lights() const {

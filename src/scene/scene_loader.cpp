@@ -20,6 +20,7 @@
 #include "scene/mesh.h"
 #include "scene/microfacet.h"
 #include "scene/obj_loader.h"
+#include "scene/texture.h"
 
 namespace pt {
 namespace {
@@ -47,8 +48,24 @@ std::string read_text(const std::string& path) {
 }
 
 void read_camera(Scene& scene, const JsonReader& j) {
-    j.allow_only({"position", "look_at", "up", "vfov", "lens_radius", "focal_distance", "near_clip", "far_clip"});
     Camera& c = scene.camera;
+    std::string type = j.has("type") ? j.string("type") : "perspective";
+    // Each type has its own keys; a key of another type is an error, not ignored.
+    if (type == "perspective") {
+        c.type = CameraType::perspective;
+        j.allow_only({"type", "position", "look_at", "up", "vfov", "lens_radius", "focal_distance", "near_clip", "far_clip"});
+    } else if (type == "orthographic") {
+        c.type = CameraType::orthographic;
+        j.allow_only({"type", "position", "look_at", "up", "height", "near_clip", "far_clip"});
+        if (!j.has("height")) j.fail("height", "an orthographic camera needs \"height\" (the view height in scene units)");
+        c.height = j.positive("height");
+    } else if (type == "fisheye") {
+        c.type = CameraType::fisheye;
+        j.allow_only({"type", "position", "look_at", "up", "fov", "near_clip", "far_clip"});
+        c.fov = j.number_in("fov", 1e-6, 360, 180);
+    } else {
+        j.fail("type", "unknown camera type \"" + type + "\" (expected perspective, orthographic or fisheye)");
+    }
     c.position = j.vec3("position");
     c.look_at = j.vec3("look_at");
     c.up = j.vec3("up", Vec3(0, 1, 0));
@@ -62,14 +79,72 @@ void read_camera(Scene& scene, const JsonReader& j) {
     if (c.far_clip <= c.near_clip) j.fail("far_clip", "expected far_clip > near_clip");
 }
 
-Material read_material(const std::string& name, const JsonReader& j) {
+/// A texture's (u, v) multiplier: a number, or [su, sv]; 1 by default.
+Vec2 read_uv_scale(const JsonReader& j) {
+    if (!j.has("scale")) return Vec2(1, 1);
+    if (!j.is_array("scale")) {
+        double s = j.positive("scale");
+        return Vec2(s, s);
+    }
+    std::vector<double> s = j.numbers("scale", 2);
+    if (!(s[0] > 0 && s[1] > 0)) j.fail("scale", "expected a number > 0 or two numbers > 0");
+    return Vec2(s[0], s[1]);
+}
+
+/// A diffuse albedo given as a texture (scene/texture.h):
+///   {"texture": "file.png", "scale": s}  or
+///   {"checkerboard": {"even": [r, g, b], "odd": [r, g, b]}, "scale": s}.
+std::shared_ptr<const Texture> read_albedo_texture(const JsonReader& j, const std::string& scene_path) {
+    j.allow_only({"texture", "checkerboard", "scale"});
+    Vec2 scale = read_uv_scale(j);
+    if (j.has("texture") == j.has("checkerboard"))
+        j.fail("", "expected either \"texture\" (an image file) or \"checkerboard\" (two colours)");
+    if (j.has("texture"))
+        return load_albedo_texture(resolve(scene_path, j.string("texture")), j.file() + ": " + j.path_of("texture"),
+                                   scale);
+    JsonReader board = j.object("checkerboard");
+    board.allow_only({"even", "odd"});
+    if (!board.has("even") || !board.has("odd")) board.fail("", "expected \"even\" and \"odd\" colours");
+    return std::make_shared<const CheckerboardTexture>(board.color("even", Color(0), 1.0), board.color("odd", Color(0), 1.0),
+                                                       scale);
+}
+
+/// The facets of a rough material: "distribution" (ggx, beckmann or
+/// blinn_phong), "roughness" alpha or [alpha_x, alpha_y] (anisotropic; GGX
+/// and Beckmann), or "exponent" (Blinn-Phong).
+void read_microfacet(const JsonReader& j, Material& m) {
+    std::string d = j.has("distribution") ? j.string("distribution") : "ggx";
+    if (d == "ggx") m.distribution = MicrofacetModel::ggx;
+    else if (d == "beckmann") m.distribution = MicrofacetModel::beckmann;
+    else if (d == "blinn_phong") m.distribution = MicrofacetModel::blinn_phong;
+    else j.fail("distribution", "unknown distribution \"" + d + "\" (expected ggx, beckmann or blinn_phong)");
+    if (m.distribution == MicrofacetModel::blinn_phong) {
+        if (j.has("roughness")) j.fail("roughness", "the blinn_phong distribution takes \"exponent\", not \"roughness\"");
+        m.exponent = j.number_in("exponent", 0, 1e6, m.exponent);
+        return;
+    }
+    if (j.has("exponent")) j.fail("exponent", "only the blinn_phong distribution takes an \"exponent\"");
+    if (j.has("roughness") && j.is_array("roughness")) {
+        std::vector<double> a = j.numbers("roughness", 2);
+        for (double v : a)
+            if (!(v >= ggx::kMinAlpha && v <= 1.0))
+                j.fail("roughness", "expected alpha or [alpha_x, alpha_y], each in [0.001, 1]");
+        m.roughness = a[0];
+        m.roughness_y = a[1];
+    } else {
+        m.roughness = j.number_in("roughness", ggx::kMinAlpha, 1.0, m.roughness);
+    }
+}
+
+Material read_material(const std::string& name, const JsonReader& j, const std::string& scene_path) {
     Material m;
     m.name = name;
     std::string type = j.string("type");
     if (type == "diffuse") {
         j.allow_only({"type", "albedo", "emission"});
         m.type = MaterialType::diffuse;
-        m.albedo = j.color("albedo", m.albedo, 1.0);
+        if (j.has("albedo") && !j.is_array("albedo")) m.albedo_texture = read_albedo_texture(j.object("albedo"), scene_path);
+        else m.albedo = j.color("albedo", m.albedo, 1.0);
     } else if (type == "mirror") {
         j.allow_only({"type", "reflectance", "emission"});
         m.type = MaterialType::mirror;
@@ -81,9 +156,9 @@ Material read_material(const std::string& name, const JsonReader& j) {
         m.reflectance = j.color("reflectance", m.reflectance, 1.0);
         m.transmittance = j.color("transmittance", m.transmittance, 1.0);
     } else if (type == "microfacet") {
-        j.allow_only({"type", "roughness", "eta", "k", "reflectance", "emission"});
+        j.allow_only({"type", "roughness", "distribution", "exponent", "eta", "k", "reflectance", "emission"});
         m.type = MaterialType::microfacet;
-        m.roughness = j.number_in("roughness", ggx::kMinAlpha, 1.0, m.roughness);
+        read_microfacet(j, m);
         // A metal is given by its complex index (eta and k together) or by
         // its colour at normal incidence ("reflectance"), never both.
         bool has_index = j.has("eta") || j.has("k");
@@ -104,9 +179,16 @@ Material read_material(const std::string& name, const JsonReader& j) {
             j.fail("", "a microfacet material needs \"eta\" and \"k\" (the metal's complex index) or "
                        "\"reflectance\" (its colour)");
         }
+    } else if (type == "rough_dielectric") {
+        j.allow_only({"type", "ior", "roughness", "distribution", "exponent", "reflectance", "transmittance", "emission"});
+        m.type = MaterialType::rough_dielectric;
+        m.ior = j.positive("ior", 1.5);
+        read_microfacet(j, m);
+        m.reflectance = j.color("reflectance", m.reflectance, 1.0);
+        m.transmittance = j.color("transmittance", m.transmittance, 1.0);
     } else {
         j.fail("type", "unknown material type \"" + type +
-                           "\" (expected diffuse, mirror, glass or microfacet)");
+                           "\" (expected diffuse, mirror, glass, microfacet or rough_dielectric)");
     }
     m.emission = j.color("emission", Color(0));
     return m;
@@ -143,7 +225,7 @@ public:
         if (!root.has("materials")) return;
         for (const auto& [name, j] : root.object_map("materials")) {
             material_index_[name] = uint32_t(scene_.materials.size());
-            scene_.materials.push_back(read_material(name, j));
+            scene_.materials.push_back(read_material(name, j, path_));
         }
     }
 
@@ -181,6 +263,8 @@ public:
             MeshData mesh;
             mesh.positions = {c, c + e1, c + e1 + e2, c + e2};
             mesh.faces = {{0, 1, 2}, {0, 2, 3}};
+            mesh.uvs = {Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1)};  // (u, v) along (edge1, edge2)
+            mesh.face_uvs = {{0, 1, 2}, {0, 2, 3}};
             mesh.material = material(j);
             add_mesh(scene_, mesh, transform);
         } else if (type == "torus_knot") {
@@ -216,7 +300,8 @@ public:
             if (j.has("file")) {
                 env.file = resolve(path_, j.string("file"));
                 std::string ext = file_extension(env.file);
-                if (ext != ".hdr" && ext != ".pfm") j.fail("file", "expected a .hdr or .pfm lat-long map");
+                if (ext != ".hdr" && ext != ".pfm" && ext != ".exr")
+                    j.fail("file", "expected a .hdr, .pfm or .exr lat-long map");
                 require_readable_file(env.file, j.file() + ": " + j.path_of("file"));
             }
             env.scale = j.positive("scale", 1.0);

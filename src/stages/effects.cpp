@@ -127,6 +127,9 @@ Effects analyze_effects(const Scene& scene, const RenderSettings& settings) {
             case MaterialType::glass:
                 any_specular = glass = true;
                 break;
+            case MaterialType::rough_dielectric:
+                any_nonspecular = glossy = glass = true;
+                break;
         }
     }
     const bool area = !scene.emitters.empty(), environment = scene.environment.has_value();

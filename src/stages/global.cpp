@@ -96,7 +96,7 @@ Color at_least_one_bounce_radiance(const RenderContext& context, const Ray& ray,
                 // path: weight 1. Else MIS against light sampling, or 1.
                 double w = 1.0;
                 if (mis && !bs.is_delta)
-                    w = bsdf_sample_mis_weight(context, {x.p, bsdf.frame().n}, wi, hit, bs.pdf, 1);
+                    w = bsdf_sample_mis_weight(context, light_sample_context(x, bsdf), wi, hit, bs.pdf, 1);
                 L += beta * Le * w;
             }
         }

@@ -8,9 +8,14 @@
 
 namespace pt {
 
+LightSampleContext light_sample_context(const SurfaceInteraction& isect, const BSDF& bsdf) {
+    return {isect.p, bsdf.is_transmissive() ? Vec3(0, 0, 0) : bsdf.frame().n};
+}
+
 Color sample_lights_mis(const RenderContext& context, const SurfaceInteraction& isect,
                         const BSDF& bsdf, const Vec3& wo, int bsdf_samples, Rng& rng) {
-    LightSampleContext ref{isect.p, bsdf.frame().n};
+    LightSampleContext ref = light_sample_context(isect, bsdf);
+    const bool both_sides = bsdf.is_transmissive();
     rng.seek(isect.depth, SampleSlot::light);  // the sampler's dimensions of light samples (core/sampler.h)
     Color L;
     for (const std::unique_ptr<Light>& light : context.lights.all()) {
@@ -20,7 +25,8 @@ Color sample_lights_mis(const RenderContext& context, const SurfaceInteraction& 
             LightSample s = light->sample_Li(ref, rng.next_2d());
             if (!s.valid() || s.L.is_black()) continue;
             Vec3 wi = bsdf.to_local(s.wi);
-            if (!(wi.z > 0)) continue;  // below the shading hemisphere: cos <= 0
+            const double cos_i = both_sides ? std::fabs(wi.z) : wi.z;
+            if (!(cos_i > 0)) continue;  // below the shading hemisphere: cos <= 0
             Color f = bsdf.f(wo, wi);
             if (f.is_black()) continue;
             // The shadow ray last: it is the expensive part.
@@ -29,7 +35,7 @@ Color sample_lights_mis(const RenderContext& context, const SurfaceInteraction& 
             double weight = s.is_delta || bsdf_samples == 0
                                 ? 1.0
                                 : power_heuristic(n, s.pdf, bsdf_samples, bsdf.pdf(wo, wi));
-            sum += f * s.L * (weight * wi.z / s.pdf);
+            sum += f * s.L * (weight * cos_i / s.pdf);
         }
         L += sum / double(n);
     }
@@ -60,7 +66,7 @@ Color estimate_direct_lighting_mis(const RenderContext& context, const Ray& ray,
     // lights the rays below would find nothing.
     if (context.lights.non_delta_count() == 0) return L;
 
-    LightSampleContext ref{isect.p, bsdf.frame().n};
+    LightSampleContext ref = light_sample_context(isect, bsdf);
     rng.seek(isect.depth, SampleSlot::bsdf);
     Color sum;
     for (int i = 0; i < n_bsdf; ++i) {

@@ -56,6 +56,11 @@ Color sample_lights_mis(const RenderContext& context, const SurfaceInteraction& 
 /// heuristic against the density with which the light it hit (`hit`), or
 /// the environment (no hit), would have been sampled. 1 when nothing there
 /// is a light.
+/// Where light is sampled from for a shading point: with the shading normal
+/// (light from above only), or without one for a transmissive BSDF, whose
+/// light may come from either side (LightSampleContext's n = 0).
+LightSampleContext light_sample_context(const SurfaceInteraction& isect, const BSDF& bsdf);
+
 double bsdf_sample_mis_weight(const RenderContext& context, const LightSampleContext& ref,
                               const Vec3& wi, const std::optional<SurfaceInteraction>& hit,
                               double bsdf_pdf, int bsdf_samples);

@@ -64,16 +64,25 @@ std::shared_ptr<const Sampler> make_sampler(const Scene& scene, const LightSet& 
     return std::make_shared<const Sampler>(s, stages.sampler.functions());
 }
 
+/// `stages` with generate_ray replaced by the projection of a camera that
+/// is not perspective (Part 1's generate_ray is the perspective one).
+Stages with_camera_projection(Stages stages, const Camera& camera) {
+    if (camera.type == CameraType::orthographic) stages.camera.generate_ray = orthographic_ray;
+    if (camera.type == CameraType::fisheye) stages.camera.generate_ray = fisheye_ray;
+    return stages;
+}
+
 }  // namespace
 
 RenderContext::RenderContext(const Scene& scene_, const Accelerator& accelerator_,
                              const Stages& stages_, const RenderSettings& settings_,
                              const Integrator& integrator_)
     : owned_lights_(std::make_shared<const LightSet>(scene_)),
+      owned_stages_(with_camera_projection(stages_, scene_.camera)),
       owned_sampler_(make_sampler(scene_, *owned_lights_, stages_, settings_)),
       scene(scene_),
       accelerator(accelerator_),
-      stages(stages_),
+      stages(owned_stages_),
       settings(settings_),
       integrator(integrator_),
       lights(*owned_lights_),
@@ -100,6 +109,7 @@ bool RenderContext::occluded(const Ray& ray) const {
 }
 
 Color RenderContext::radiance(const Ray& ray, Rng& rng) const {
+    if (sees_nothing(ray)) return Color(0);
     Color L = integrator.Li(*this, ray, rng);
     // Clamping trades bias for less variance; only on request, and counted.
     if (settings.clamp > 0 && L.max_component() > settings.clamp) {
@@ -112,7 +122,8 @@ Color RenderContext::radiance(const Ray& ray, Rng& rng) const {
 BSDF RenderContext::bsdf_at(const SurfaceInteraction& isect) const {
     const Material& material = *isect.material;
     Vec3 n = isect.n;
-    if (material.type != MaterialType::glass) {
+    const bool keeps_normal = material.type == MaterialType::glass || material.type == MaterialType::rough_dielectric;
+    if (!keeps_normal) {
         // The side is the geometric normal's (the true surface); the shading
         // normal, which may disagree near silhouettes of smooth meshes or
         // when a mesh's vertex normals oppose its winding, is turned into
@@ -120,7 +131,15 @@ BSDF RenderContext::bsdf_at(const SurfaceInteraction& isect) const {
         Vec3 ng = dot(isect.ng, isect.wo) < 0 ? -isect.ng : isect.ng;
         if (dot(n, ng) < 0) n = -n;
     }
-    return BSDF(material, Frame(n), {stages.direct.diffuse_f, stages.direct.diffuse_sample_f});
+    // A textured albedo is looked up at the hit's (u, v) (scene/texture.h).
+    Color albedo = material.albedo_texture
+                       ? material.albedo_texture->evaluate(scene.uv_at(isect.primitive, isect.b1, isect.b2, isect.p))
+                       : material.albedo;
+    // Anisotropic roughness needs the frame's x axis along the surface's u direction.
+    const bool anisotropic = material.roughness_y >= 0 && material.roughness_y != material.roughness &&
+                             (material.type == MaterialType::microfacet || keeps_normal);
+    Frame frame = anisotropic ? Frame::with_tangent(n, scene.dpdu(isect.primitive, isect.p)) : Frame(n);
+    return BSDF(material, frame, {stages.direct.diffuse_f, stages.direct.diffuse_sample_f}, albedo);
 }
 
 }  // namespace pt

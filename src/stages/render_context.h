@@ -24,6 +24,9 @@ class Integrator;
 struct RenderContext {
 private:
     std::shared_ptr<const LightSet> owned_lights_;  ///< first, so `lights` can refer to it
+    /// The stage tables, with the camera's own projection in place of
+    /// generate_ray when the scene's camera is not perspective (scene/camera.h).
+    Stages owned_stages_;
     std::shared_ptr<const Sampler> owned_sampler_;   ///< null for independent sampling
 
 public:
@@ -56,7 +59,8 @@ public:
     /// analysis proved that no light sample can be blocked (code_paths.shadow_rays).
     bool occluded(const Ray& ray) const;
     /// The integrator's radiance estimate along a camera ray; with --clamp X
-    /// scaled so that its largest component is at most X (counted).
+    /// scaled so that its largest component is at most X (counted). Black
+    /// for a ray that sees nothing (scene/camera.h: outside a fisheye's circle).
     Color radiance(const Ray& ray, Rng& rng) const;
     /// The BSDF at `isect`: its material in the shading frame of isect.n,
     /// with the direct stage's diffuse routines (student or reference). For

@@ -24,7 +24,8 @@
 // and the discrete check of glass's two lobes (2); Part 7 the emission
 // sampling of every light kind (10, test_light_emission.cpp); Part 6 the
 // uniformity of four samplers in four places each (16,
-// test_sampler_uniformity.cpp): 50 in all. Add a test, raise
+// test_sampler_uniformity.cpp); the glossy models (14,
+// test_glossy_sampling.cpp): 64 in all. Add a test, raise
 // kChiSquareTestCount.
 #pragma once
 
@@ -46,7 +47,7 @@ namespace pt::stats {
 /// Every chi-square test in tests/statistical (one per TEST_CASE or
 /// SUBCASE that calls chi2_test); the Sidak correction divides the family
 /// significance among them. Keep it in sync when adding tests.
-constexpr int kChiSquareTestCount = 50;
+constexpr int kChiSquareTestCount = 64;
 constexpr double kFamilySignificance = 0.01;
 
 /// Per-test significance that keeps the family-wise error rate at `alpha`
@@ -227,6 +228,32 @@ struct DirectionGrid {
             for (int j = 0; j < 5; ++j)
                 sum += weight[i] * weight[j] * f(cx + hx * node[i], cy + hy * node[j]);
         return sum * hx * hy;
+    }
+};
+
+/// A DirectionGrid whose cells are each integrated as k x k sub-cells: for
+/// peaked pdfs (glossy lobes), where one Gauss rule per cell is not exact.
+struct SubdividedDirectionGrid {
+    DirectionGrid grid;
+    int k = 4;
+
+    int cells() const { return grid.cells(); }
+    int cell(const Vec3& w) const { return grid.cell(w); }
+    template <class Pdf>
+    double integrate(int c, Pdf pdf) const {
+        int iz = c / grid.nphi, ip = c % grid.nphi;
+        double dz = (1.0 - grid.z_min) / grid.nz, dphi = kTwoPi / grid.nphi;
+        double z0 = grid.z_min + iz * dz, phi0 = ip * dphi;
+        double sum = 0;
+        for (int a = 0; a < k; ++a)
+            for (int b = 0; b < k; ++b)
+                sum += DirectionGrid::gauss_2d(z0 + a * dz / k, z0 + (a + 1) * dz / k, phi0 + b * dphi / k,
+                                               phi0 + (b + 1) * dphi / k, [&](double z, double phi) {
+                                                   double r = safe_sqrt(1.0 - z * z);
+                                                   return pdf(grid.frame.to_world(
+                                                       Vec3(r * std::cos(phi), r * std::sin(phi), z)));
+                                               });
+        return sum;
     }
 };
 

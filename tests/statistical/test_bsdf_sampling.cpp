@@ -47,32 +47,9 @@ Material microfacet(double roughness) {
 }
 
 /// The upper hemisphere of the surface frame (z_min = 0, so the horizon,
-/// where the pdf drops to 0, is a cell edge), each cell integrated as k x k
-/// sub-cells: the GGX lobe is peaked, and the Gauss rule is exact only for
-/// smooth integrands.
-struct HemisphereGrid {
-    DirectionGrid grid{Frame(), 40, 80, 0.0};
-    int k = 4;
-
-    int cells() const { return grid.cells(); }
-    int cell(const Vec3& w) const { return grid.cell(w); }
-    template <class Pdf>
-    double integrate(int c, Pdf pdf) const {
-        int iz = c / grid.nphi, ip = c % grid.nphi;
-        double dz = 1.0 / grid.nz / k, dphi = kTwoPi / grid.nphi / k;
-        double z0 = double(iz) / grid.nz, phi0 = ip * kTwoPi / grid.nphi;
-        double sum = 0;
-        for (int a = 0; a < k; ++a)
-            for (int b = 0; b < k; ++b)
-                sum += DirectionGrid::gauss_2d(
-                    z0 + a * dz, z0 + (a + 1) * dz, phi0 + b * dphi, phi0 + (b + 1) * dphi,
-                    [&](double z, double phi) {
-                        double r = safe_sqrt(1.0 - z * z);
-                        return pdf(Vec3(r * std::cos(phi), r * std::sin(phi), z));
-                    });
-        return sum;
-    }
-};
+/// where the pdf drops to 0, is a cell edge), each cell integrated as 4 x 4
+/// sub-cells: the GGX lobe is peaked.
+SubdividedDirectionGrid hemisphere_grid() { return {DirectionGrid{Frame(), 40, 80, 0.0}, 4}; }
 
 }  // namespace
 
@@ -100,7 +77,7 @@ TEST_CASE("chi2: microfacet (GGX, visible normals) sample_f") {
                 return s.wi;
             };
             Chi2Result r = chi2_sampling_test(
-                HemisphereGrid{}, sample, [&](const Vec3& w) { return bsdf.pdf(wo, w); }, 1000000,
+                hemisphere_grid(), sample, [&](const Vec3& w) { return bsdf.pdf(wo, w); }, 1000000,
                 uint64_t(100 * roughness + 10 * wo.z), /*may_fail=*/true);
             check_passes(r);
             CHECK(inconsistent == 0);
