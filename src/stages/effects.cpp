@@ -130,6 +130,8 @@ Effects analyze_effects(const Scene& scene, const RenderSettings& settings) {
             case MaterialType::rough_dielectric:
                 any_nonspecular = glossy = glass = true;
                 break;
+            case MaterialType::null:
+                break;  // nothing there: light goes straight on
         }
     }
     const bool area = !scene.emitters.empty(), environment = scene.environment.has_value();
