@@ -73,9 +73,10 @@ std::vector<FlagSpec> flag_table() {
         {{"--exposure"}, 1, [](Options& o, S f, V v) { o.display.exposure = parse_real_number(f, v[0], -64, 64); }},
         {{"--accel"}, 1, [](Options& o, S f, V v) { o.accelerator.use_bvh = one_of(f, v[0], {"none", "bvh"}) == "bvh"; }},
         {{"--integrator"}, 1, [](Options& o, S f, V v) {
-             std::string k = one_of(f, v[0], {"auto", "normals", "depth", "whitted", "direct", "path"});
+             std::string k = one_of(f, v[0], {"auto", "normals", "depth", "whitted", "direct", "path", "volpath"});
              for (IntegratorKind kind : {IntegratorKind::automatic, IntegratorKind::normals, IntegratorKind::depth,
-                                         IntegratorKind::whitted, IntegratorKind::direct, IntegratorKind::path})
+                                         IntegratorKind::whitted, IntegratorKind::direct, IntegratorKind::path,
+                                         IntegratorKind::volpath})
                  if (k == to_string(kind)) o.render.integrator = kind;
          }},
         {{"--student"}, 1, [](Options& o, S f, V v) { o.student = StageSet::parse(v[0], f); }},
@@ -188,7 +189,7 @@ std::string usage(const std::string& program, StageSet default_student) {
       << "  --tonemap clamp|reinhard|filmic|local  display transform of the PNG      [clamp]\n"
       << "  --exposure EV   scale the PNG's radiance by 2^EV before tone mapping   [0]\n"
       << "  --accel none|bvh                                                       [bvh]\n"
-      << "  --integrator auto|normals|depth|whitted|direct|path                    [auto]\n"
+      << "  --integrator auto|normals|depth|whitted|direct|path|volpath            [auto]\n"
       << "  --student LIST  stages with student code: camera,intersect,bvh,direct,global,adaptive,sampler,\n"
       << "                  all or none                                            [" << default_student.to_string() << "]\n"
       << "  --stats FILE.json  seconds per phase, rays, spp, BVH, effects\n"

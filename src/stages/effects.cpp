@@ -23,6 +23,9 @@ std::vector<std::string> Effects::names() const {
     add(diffuse_interreflection, "diffuse_interreflection");
     add(caustics, "caustics");
     add(depth_of_field, "depth_of_field");
+    add(medium_absorption, "medium_absorption");
+    add(single_scattering, "single_scattering");
+    add(multiple_scattering, "multiple_scattering");
     return out;
 }
 
@@ -156,6 +159,15 @@ Effects analyze_effects(const Scene& scene, const RenderSettings& settings) {
     // so caustics need an area light or the sky.
     e.caustics = (area || environment) && any_nonspecular && any_specular && m >= 2;
     e.depth_of_field = scene.camera.lens_radius > 0;
+    // Media: any medium dims what is seen through it; one that scatters
+    // lights itself (a bounce) and, from -m 2, lights itself again.
+    bool scattering_medium = false;
+    for (const Medium& medium : scene.media) {
+        e.medium_absorption |= !medium.sigma_t().is_black();
+        scattering_medium |= medium.scatters();
+    }
+    e.single_scattering = scattering_medium && lit && m >= 1;
+    e.multiple_scattering = scattering_medium && lit && m >= 2;
     return e;
 }
 

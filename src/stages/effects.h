@@ -49,6 +49,9 @@ struct Effects {
         false;              ///< light bouncing between non-specular surfaces (-m >= 2)
     bool caustics = false;  ///< light from area or sky lights focused by mirrors or glass (-m >= 2)
     bool depth_of_field = false;  ///< thin lens (-b > 0)
+    bool medium_absorption = false;    ///< light dimmed along rays by participating media (extinction)
+    bool single_scattering = false;    ///< light scattered once in a medium towards the camera (-m >= 1)
+    bool multiple_scattering = false;  ///< light scattered more than once in media (-m >= 2)
 
     /// Names of the effects present, in a fixed order ("area_lights", ...).
     std::vector<std::string> names() const;

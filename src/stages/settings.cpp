@@ -27,6 +27,7 @@ const char* to_string(IntegratorKind k) {
         case IntegratorKind::whitted: return "whitted";
         case IntegratorKind::direct: return "direct";
         case IntegratorKind::path: return "path";
+        case IntegratorKind::volpath: return "volpath";
     }
     return "?";
 }

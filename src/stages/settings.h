@@ -24,6 +24,7 @@ enum class IntegratorKind {
     whitted,    ///< point and directional lights, hard shadows, mirror and glass
     direct,     ///< emission plus direct light (paths of at most one bounce)
     path,       ///< path tracing with -m, -o and Russian roulette
+    volpath,    ///< path tracing through participating media (Part 9)
 };
 
 /// How adaptive sampling decides that a pixel may stop (`--adaptive`).

@@ -63,6 +63,8 @@ Stages make_stages(StageSet student, TriangleTest triangle_test) {
     } else {
         s.sampler = {reference::stratified_sample_2d, reference::scrambled_radical_inverse};
     }
+    s.media = {reference::homogeneous_transmittance, reference::sample_distance, reference::hg_phase,
+               reference::sample_hg};
     return s;
 }
 
