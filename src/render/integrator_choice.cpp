@@ -61,6 +61,9 @@ std::string integrator_note(IntegratorKind kind, const Scene& scene,
         kind != IntegratorKind::depth)
         return std::string(to_string(kind)) + " ignores participating media (null surfaces count as bounces): "
                "use --integrator volpath";
+    if ((kind == IntegratorKind::pm || kind == IntegratorKind::sppm) && settings.max_depth != 1)
+        return std::string(to_string(kind)) + " follows photon paths until Russian roulette ends them: -m " +
+               std::to_string(settings.max_depth) + " is not used";
     if (kind != IntegratorKind::whitted) return "";
     if (!scene.emitters.empty() || scene.environment)
         return "Whitted lights surfaces with area and sky lights by light sampling (-l), which "
@@ -85,6 +88,10 @@ std::unique_ptr<Integrator> make_integrator(IntegratorKind kind) {
             return make_path_integrator();
         case IntegratorKind::volpath:
             return make_volpath_integrator();
+        case IntegratorKind::pm:
+            return make_pm_integrator();
+        case IntegratorKind::sppm:
+            return make_sppm_integrator();
         default:
             break;
     }

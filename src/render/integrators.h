@@ -27,6 +27,12 @@ std::unique_ptr<Integrator> make_path_integrator();
 /// Volume path tracing: the path tracer with participating media, free
 /// flights, phase functions and transmittance (render/volpath_integrator.cpp, Part 9).
 std::unique_ptr<Integrator> make_volpath_integrator();
+/// Photon mapping with a caustic and a global map and final gathering
+/// (render/pm_integrator.cpp); its maps are traced in prepare().
+std::unique_ptr<Integrator> make_pm_integrator();
+/// Stochastic progressive photon mapping: render_image hands the whole
+/// render to render_sppm (render/sppm.h); Li alone is not defined.
+std::unique_ptr<Integrator> make_sppm_integrator();
 
 }  // namespace pt
 

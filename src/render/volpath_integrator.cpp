@@ -36,7 +36,9 @@
 #include "render/integrators.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <mutex>
 #include <optional>
 
 #include "core/sampling.h"
@@ -126,11 +128,21 @@ class VolPathIntegrator final : public Integrator {
         const bool mis = settings.direct == DirectStrategy::mis;
         const bool nee = settings.direct != DirectStrategy::hemisphere && context.code_paths.light_sampling;
         const bool sampled_emission = settings.direct != DirectStrategy::light;  // found by sampled directions
+        // Part 9 (--student media): the student's light sampling at medium
+        // collisions, plain (no MIS), so emission found from them is not counted.
+        const bool student = context.stages.is_student(Stage::media);
+        if (student) probe_.run_once(context);
 
-        Color L, beta(1.0);     // the radiance found, and the path's throughput
+        // The radiance found; the path's throughput over its hero channel's
+        // pdf (beta) and the other channels' pdfs relative to the hero's (r):
+        // it contributes beta / mean(r) (stages/medium_tracking.h).
+        Color L, beta(1.0), r(1.0);
+        const int hero = std::min(2, int(rng.next_1d() * 3.0));
+        auto spectral_mis = [&]() { return 3.0 / (r.r + r.g + r.b); };
         double eta_scale = 1.0;  // product of eta^2 of refractions: kept out of roulette
         int depth = 0;           // scattering vertices so far: light found now has `depth` bounces
         bool after_delta = true;  // the camera or a delta bounce: emission found counts in full
+        bool after_plain_nee = false;  // the last vertex counted its light by NEE alone (student)
         bool last = false;        // this ray only looks for emission (the -m-th bounce)
         LightSampleContext previous;  // the last vertex, for the MIS weight of emission found
         double previous_pdf = 0;      // the density its sampling drew the ray's direction with
@@ -142,15 +154,16 @@ class VolPathIntegrator final : public Integrator {
             if (Le.is_black() || !(settings.accumulate_bounces || depth == settings.max_depth)) return;
             double w = 1.0;
             if (!after_delta) {
-                if (!sampled_emission) return;  // next-event estimation counted it
+                if (!sampled_emission || after_plain_nee) return;  // next-event estimation counted it
                 if (mis) w = bsdf_sample_mis_weight(context, previous, ray.d, hit, previous_pdf, 1);
             }
-            L += beta * Le * w;
+            L += beta * Le * (w * spectral_mis());
         };
         // Russian roulette on the throughput the path would have; false ends the path.
         auto survives = [&](Color& weight, int bounces) {
             if (!settings.russian_roulette || bounces <= settings.rr_depth) return true;
-            const double q = std::min(kMaxSurvivalProbability, (beta * weight).max_component() * eta_scale);
+            const double q =
+                std::min(kMaxSurvivalProbability, (beta * weight).max_component() * spectral_mis() * eta_scale);
             if (rng.next_1d() >= q) return false;
             weight /= q;
             return true;
@@ -161,17 +174,21 @@ class VolPathIntegrator final : public Integrator {
             // 1. The medium up to the hit: a collision there is a vertex.
             if (medium >= 0) {
                 const Medium& m = scene.media[size_t(medium)];
-                FreeFlight flight = sample_free_flight(context, m, ray, hit ? hit->t : ray.t_max, rng);
+                FreeFlight flight = sample_free_flight(context, m, ray, hit ? hit->t : ray.t_max, hero, rng);
                 beta *= flight.weight;
+                r *= flight.pdf_ratio;
                 if (beta.is_black()) break;
                 if (flight.scattered) {
                     if (last) break;  // this ray looked only for emission
                     const Vertex v{ray.at(flight.t), -ray.d, medium, nullptr, nullptr, m.g};
                     const int bounces = depth + 1;
                     const bool counted = bounces <= settings.max_depth && (settings.accumulate_bounces || bounces == settings.max_depth);
-                    if (nee && counted) L += beta * sample_lights(context, v, mis, rng);
+                    if (nee && counted)
+                        L += beta * spectral_mis() *
+                             (student ? stage.in_scattered_radiance(context, v.p, v.wo, medium, rng)
+                                      : sample_lights(context, v, mis, rng));
                     const bool continues = bounces < settings.max_depth;
-                    if (!continues && !(counted && sampled_emission)) break;
+                    if (!continues && !(counted && sampled_emission && !student)) break;
                     const Vec3 wi = stage.sample_hg(v.wo, m.g, rng.next_2d());
                     Color weight(1.0);  // HG is sampled exactly: p / pdf = 1
                     if (!survives(weight, bounces)) break;
@@ -179,6 +196,7 @@ class VolPathIntegrator final : public Integrator {
                     previous = v.light_context();
                     previous_pdf = stage.hg_phase(-dot(v.wo, wi), m.g);
                     after_delta = false;
+                    after_plain_nee = student;
                     last = !continues;
                     depth = bounces;
                     ray = Ray(v.p, wi, kSpawnTMin);
@@ -201,7 +219,7 @@ class VolPathIntegrator final : public Integrator {
             const Vertex v{hit->p, hit->wo, medium, &*hit, &bsdf, 0.0};
             const int bounces = depth + 1;
             const bool counted = bounces <= settings.max_depth && (settings.accumulate_bounces || bounces == settings.max_depth);
-            if (nee && counted && !bsdf.is_delta()) L += beta * sample_lights(context, v, mis, rng);
+            if (nee && counted && !bsdf.is_delta()) L += beta * spectral_mis() * sample_lights(context, v, mis, rng);
             const bool continues = bounces < settings.max_depth;
             if (!continues && !(counted && (sampled_emission || bsdf.is_delta()))) break;
             BSDFSample bs = bsdf.sample_f(bsdf.to_local(hit->wo), rng.next_2d());
@@ -214,6 +232,7 @@ class VolPathIntegrator final : public Integrator {
             previous = light_sample_context(*hit, bsdf);
             previous_pdf = bs.pdf;
             after_delta = bs.is_delta;
+            after_plain_nee = false;
             last = !continues;
             depth = bounces;
             medium = medium_after(scene, *hit, wi, medium);
@@ -222,6 +241,32 @@ class VolPathIntegrator final : public Integrator {
         return L;
     }
     IntegratorKind kind() const override { return IntegratorKind::volpath; }
+
+  private:
+    /// Calls each student function of the media stage once, in task order,
+    /// before the first pixel: the first one missing is the one reported.
+    class MediaProbe {
+      public:
+        void run_once(const RenderContext& context) const {
+            if (done_.load(std::memory_order_acquire)) return;
+            std::lock_guard<std::mutex> lock(mutex_);
+            if (done_.load(std::memory_order_relaxed)) return;
+            const MediaStage& stage = context.stages.media;
+            Rng rng(1);
+            (void)stage.homogeneous_transmittance(Color(1.0), 1.0);
+            (void)stage.sample_distance(1.0, 1.0, 0.5);
+            (void)stage.hg_phase(0.5, 0.3);
+            (void)stage.sample_hg(Vec3(0, 0, 1), 0.3, Vec2(0.5, 0.5));
+            if (!context.scene.media.empty())
+                (void)stage.in_scattered_radiance(context, context.scene.camera.position, Vec3(0, 0, 1), 0, rng);
+            done_.store(true, std::memory_order_release);
+        }
+
+      private:
+        mutable std::atomic<bool> done_{false};
+        mutable std::mutex mutex_;
+    };
+    MediaProbe probe_;
 };
 
 }  // namespace

@@ -34,9 +34,15 @@
 // and phi uniform (pbrt-v3 section 15.2.3, with its sign convention made
 // explicit above).
 //
+// Single scattering: with light sampling for L_s at the collision, one
+// free flight per camera ray estimates the integral above for light that
+// scattered once (-m 1): (sigma_s / sigma_t) L_s(x(t), -d) per collision.
+//
 // The volume path tracer (render/volpath_integrator.cpp, `--integrator
 // volpath`) calls these functions through the stage table; its chromatic
 // and heterogeneous machinery (stages/medium_tracking.h) is reference only.
+// With `--student media` (part9), next-event estimation at every medium
+// collision is in_scattered_radiance (light sampling, no MIS there).
 //
 // Tests: tests/statistical/test_media_sampling.cpp (chi-square of HG
 // sampling for g in {-0.9, -0.3, 0, 0.5, 0.95} and of distance sampling),
@@ -44,9 +50,12 @@
 #pragma once
 
 #include "core/color.h"
+#include "core/rng.h"
 #include "core/vec3.h"
 
 namespace pt {
+
+struct RenderContext;
 
 /// What sample_distance draws: where the next collision is, or that there
 /// is none before the surface.
@@ -61,6 +70,8 @@ using HomogeneousTransmittanceFn = Color (*)(const Color& sigma_t, double distan
 using SampleDistanceFn = DistanceSample (*)(double sigma_t, double t_max, double u);
 using HgPhaseFn = double (*)(double cos_theta, double g);
 using SampleHgFn = Vec3 (*)(const Vec3& wo, double g, Vec2 u);
+using InScatteredRadianceFn = Color (*)(const RenderContext& context, const Vec3& p, const Vec3& wo, int medium,
+                                        Rng& rng);
 
 struct MediaStage {
     /// e^(-sigma_t distance) per channel: the fraction of light that crosses
@@ -78,6 +89,16 @@ struct MediaStage {
     /// A unit direction wi drawn with density p_HG(-dot(wo, wi)) from the
     /// unit direction wo (pointing back along the path) and u in [0, 1)^2.
     SampleHgFn sample_hg;
+    /// The in-scattered radiance from the lights, L_s(p, wo) = integral of
+    /// p_HG(wo, wi) L_direct(p, wi) dwi, at the point p inside medium
+    /// `medium` (an index into context.scene.media, >= 0), towards the unit
+    /// direction wo, by light sampling: for every light, -l samples (one for
+    /// a delta light) from Light::sample_Li with a context of no normal,
+    /// each weighted by the phase function and by the transmittance of its
+    /// shadow ray (shadow_transmittance, stages/medium_tracking.h), averaged
+    /// per light and summed. Not multiplied by sigma_s: the free flight that
+    /// found p has weighed it in.
+    InScatteredRadianceFn in_scattered_radiance;
 };
 
 namespace reference {
@@ -85,6 +106,7 @@ Color homogeneous_transmittance(const Color& sigma_t, double distance);
 DistanceSample sample_distance(double sigma_t, double t_max, double u);
 double hg_phase(double cos_theta, double g);
 Vec3 sample_hg(const Vec3& wo, double g, Vec2 u);
+Color in_scattered_radiance(const RenderContext& context, const Vec3& p, const Vec3& wo, int medium, Rng& rng);
 }  // namespace reference
 
 namespace student {
@@ -92,6 +114,7 @@ Color homogeneous_transmittance(const Color& sigma_t, double distance);
 DistanceSample sample_distance(double sigma_t, double t_max, double u);
 double hg_phase(double cos_theta, double g);
 Vec3 sample_hg(const Vec3& wo, double g, Vec2 u);
+Color in_scattered_radiance(const RenderContext& context, const Vec3& p, const Vec3& wo, int medium, Rng& rng);
 }  // namespace student
 
 }  // namespace pt

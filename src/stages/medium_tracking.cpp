@@ -113,7 +113,8 @@ Color shadow_transmittance(const RenderContext& context, Ray ray, int medium, Rn
     return T;
 }
 
-FreeFlight sample_free_flight(const RenderContext& context, const Medium& m, const Ray& ray, double t_max, Rng& rng) {
+FreeFlight sample_free_flight(const RenderContext& context, const Medium& m, const Ray& ray, double t_max,
+                              int hero, Rng& rng) {
     FreeFlight f;
     f.t = t_max;
     const Color sigma_t = m.sigma_t();
@@ -123,19 +124,18 @@ FreeFlight sample_free_flight(const RenderContext& context, const Medium& m, con
             f.weight = stage.homogeneous_transmittance(sigma_t, t_max);
             return f;
         }
-        // One channel picked uniformly; the balance heuristic over all three.
-        const int channel = std::min(2, int(rng.next_1d() * 3.0));
-        DistanceSample s = stage.sample_distance(sigma_t[channel], t_max, rng.next_1d());
+        // The hero channel's distance; its pdf divided out, the others' kept as ratios.
+        DistanceSample s = stage.sample_distance(sigma_t[hero], t_max, rng.next_1d());
         const Color T = stage.homogeneous_transmittance(sigma_t, s.t);
-        if (s.scattered) {
-            const double pdf = mean(sigma_t * T);
-            f.scattered = true;
-            f.t = s.t;
-            f.weight = pdf > 0 ? T * m.sigma_s / pdf : Color(0);
-        } else {
-            const double probability = mean(T);
-            f.weight = probability > 0 ? T / probability : Color(0);
+        if (!(s.pdf > 0)) {
+            f.weight = Color(0);
+            return f;
         }
+        f.scattered = s.scattered;
+        f.t = s.t;
+        const Color pdf = s.scattered ? sigma_t * T : T;  // each channel's density (or probability) of this event
+        f.weight = (s.scattered ? T * m.sigma_s : T) / s.pdf;
+        f.pdf_ratio = pdf / s.pdf;
         return f;
     }
     const DensityGrid& grid = *m.density;

@@ -30,13 +30,18 @@
 //     in the weights (pbrt-v4 section 14.2.3 with one majorant for all
 //     channels). Unbiased for any sigma_maj >= sigma_t.
 //
-// Homogeneous media sample the distance with one channel picked uniformly
-// and weight by the balance heuristic over the three channels (one-sample
-// MIS; pbrt-v4's spectral MIS, Mitsuba's "chromatic media"): with
-// T = e^(-sigma_t t) per channel,
-//     scattered at t: weight T sigma_s / mean_c(sigma_t,c T_c)
-//     passed (t_max): weight T / mean_c(T_c)
-// so a channel with sigma_t = 0 is still handled without a division by 0.
+// Homogeneous media sample the distance with one channel, the path's "hero"
+// channel picked uniformly once per camera path, and weight the whole path
+// by the balance heuristic over the three channels (one-sample MIS;
+// pbrt-v4's spectral MIS, Mitsuba's chromatic media): the path carries its
+// throughput divided by the hero's pdf, beta, and the ratios r_c = p_c /
+// p_hero of each channel's path pdf to the hero's, and contributes
+// beta L / mean_c(r_c). With T = e^(-sigma_t t) per channel and h the hero,
+//     scattered at t: beta *= T sigma_s / (sigma_t,h T_h),  r *= sigma_t T / (sigma_t,h T_h)
+//     passed (t_max): beta *= T / T_h,                      r *= T / T_h
+// r_h stays 1, so mean(r) >= 1/3 and the weight of a whole path is at most
+// 3 times its f / p; choosing the channel anew at every collision instead
+// would bound each collision's factor by 3, and a path's by 3^k.
 //
 // Tests: tests/global/test_media_render.cpp (transmittance through slabs and
 // spheres, delta against ratio tracking, single scattering against
@@ -82,8 +87,11 @@ Color shadow_transmittance(const RenderContext& context, Ray ray, int medium, Rn
 struct FreeFlight {
     bool scattered = false;  ///< a real collision (scattering) at t < t_max
     double t = 0;            ///< where: the collision, or t_max
-    Color weight{1.0};       ///< what the path's throughput is multiplied by (see the file comment)
+    Color weight{1.0};       ///< what beta is multiplied by (see the file comment)
+    Color pdf_ratio{1.0};    ///< what the path's pdf ratios r are multiplied by
 };
-FreeFlight sample_free_flight(const RenderContext& context, const Medium& m, const Ray& ray, double t_max, Rng& rng);
+/// `hero` (0, 1 or 2) is the channel whose distances the path samples.
+FreeFlight sample_free_flight(const RenderContext& context, const Medium& m, const Ray& ray, double t_max,
+                              int hero, Rng& rng);
 
 }  // namespace pt

@@ -18,6 +18,7 @@
 #include "stages/global.h"
 #include "stages/intersect.h"
 #include "stages/media.h"
+#include "stages/photon.h"
 #include "stages/sampler.h"
 #include "stages/stage_set.h"
 
@@ -55,6 +56,7 @@ struct Stages {
     GlobalStage global;
     SamplerStage sampler;
     MediaStage media;
+    PhotonStage photon;
 
     bool is_student(Stage s) const { return student.contains(s); }
 };
