@@ -87,6 +87,10 @@ std::vector<FlagSpec> flag_table() {
              o.render.direct = d == "light" ? DirectStrategy::light
                                : d == "hemisphere" ? DirectStrategy::hemisphere : DirectStrategy::mis;
          }},
+        {{"--mis-heuristic"}, 1, [](Options& o, S f, V v) {
+             std::string h = one_of(f, v[0], {"power", "balance"});
+             o.render.mis_heuristic = h == "power" ? MisHeuristic::power : MisHeuristic::balance;
+         }},
         {{"--rr-depth"}, 1, [](Options& o, S f, V v) {
              // A whole number, or "off": no roulette (every path runs to -m).
              if (v[0] == "off") {
@@ -237,6 +241,7 @@ std::string usage(const std::string& program, StageSet default_student) {
       << "  --stats FILE.json  seconds per phase, rays, spp, BVH, effects\n"
       << "  -q              no progress bar\n"
       << "  --direct light|hemisphere|mis                                          [light]\n"
+      << "  --mis-heuristic power|balance  MIS weights (--direct mis, path tracing)  [power]\n"
       << "  --rr-depth N|off  Russian roulette after N bounces, or none            [3]\n"
       << "  --clamp X       scale samples down to max component X (biased)         [off]\n"
       << "  --triangle moller|watertight                                           [moller]\n"

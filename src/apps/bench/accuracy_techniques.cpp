@@ -39,6 +39,11 @@ const std::vector<Technique>& all_techniques() {
          [](TechniqueConfig&) {}},
         {"mis", "MIS of light and BSDF samples at each vertex (--direct mis)", "light",
          [](TechniqueConfig& c) { c.settings.direct = DirectStrategy::mis; }},
+        {"mis-balance", "MIS weighted by the balance heuristic (--direct mis --mis-heuristic balance)", "mis",
+         [](TechniqueConfig& c) {
+             c.settings.direct = DirectStrategy::mis;
+             c.settings.mis_heuristic = MisHeuristic::balance;
+         }},
         {"adaptive", "adaptive sampling (-a, --adaptive split: unbiased), -s is the maximum", "light",
          [](TechniqueConfig& c) {
              c.settings.adaptive = true;
