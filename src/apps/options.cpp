@@ -71,7 +71,7 @@ std::vector<FlagSpec> flag_table() {
                  if (t == to_string(m)) o.display.tone_map = m;
          }},
         {{"--exposure"}, 1, [](Options& o, S f, V v) { o.display.exposure = parse_real_number(f, v[0], -64, 64); }},
-        {{"--accel"}, 1, [](Options& o, S f, V v) { o.accelerator.use_bvh = one_of(f, v[0], {"none", "bvh"}) == "bvh"; }},
+        {{"--accel"}, 1, [](Options& o, S f, V v) { o.accelerator.kind = parse_accel_kind(v[0], f); }},
         {{"--integrator"}, 1, [](Options& o, S f, V v) {
              std::string k = one_of(f, v[0], {"auto", "normals", "depth", "whitted", "direct", "path", "pm", "sppm"});
              for (IntegratorKind kind : {IntegratorKind::automatic, IntegratorKind::normals, IntegratorKind::depth,
@@ -224,7 +224,8 @@ std::string usage(const std::string& program, StageSet default_student) {
       << "  --hdr FILE.pfm|FILE.exr  also write the linear image\n"
       << "  --tonemap clamp|reinhard|filmic|local  display transform of the PNG      [clamp]\n"
       << "  --exposure EV   scale the PNG's radiance by 2^EV before tone mapping   [0]\n"
-      << "  --accel none|bvh                                                       [bvh]\n"
+      << "  --accel none|grid|kdtree|bvh|embree  acceleration structure (embree: only in\n"
+      << "                  builds with -DPT_WITH_EMBREE=ON)                       [bvh]\n"
       << "  --integrator auto|normals|depth|whitted|direct|path|pm|sppm            [auto]\n"
       << "  --photons N     pm: photons emitted for the global map                 [200000]\n"
       << "  --caustic-photons N  pm: photons emitted for the caustic map           [200000]\n"
