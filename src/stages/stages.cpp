@@ -63,6 +63,7 @@ Stages make_stages(StageSet student, TriangleTest triangle_test) {
     } else {
         s.sampler = {reference::stratified_sample_2d, reference::scrambled_radical_inverse};
     }
+    s.photon = {reference::emit_photon, reference::build_kdtree, reference::k_nearest, reference::density_estimate};
     return s;
 }
 
