@@ -18,11 +18,12 @@ solution=${PT_COVERAGE_SOLUTION:-$root/tests/grading/solution}
 launcher=()
 command -v ccache > /dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 
+mkdir -p "$build"
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DPT_BUILD_TESTS=OFF \
-  -DPT_STUDENT_DIR="$solution" -DPT_STUDENT_COVERAGE=ON "${launcher[@]}" > "$build.configure.log" 2>&1 ||
-  { echo "coverage: cmake failed, see $build.configure.log" >&2; exit 2; }
-cmake --build "$build" -j2 --target grade > "$build.build.log" 2>&1 ||
-  { echo "coverage: the build failed, see $build.build.log" >&2; exit 2; }
+  -DPT_STUDENT_DIR="$solution" -DPT_STUDENT_COVERAGE=ON "${launcher[@]}" > "$build/configure.log" 2>&1 ||
+  { echo "coverage: cmake failed, see $build/configure.log" >&2; exit 2; }
+cmake --build "$build" -j2 --target grade > "$build/build.log" 2>&1 ||
+  { echo "coverage: the build failed, see $build/build.log" >&2; exit 2; }
 find "$build" -name '*.gcda' -delete
 status=0
 "$build/bin/grade" --timeout 0 -q -t 2 --out "$build/coverage_grade" \

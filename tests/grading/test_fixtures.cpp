@@ -12,10 +12,12 @@ using namespace pt::testing;
 
 namespace {
 
-/// The fixture's failing tasks on seeds 1 to 3; every task of the part on seed 1.
+/// The fixture's failing tasks on seeds 1 to 3 (the hidden set's on seed 1
+/// only, to keep the suite short); every task of the part on seed 1.
 void check_fails_exactly_its_tasks(int part, const fixtures::Fixture& f) {
     Stages student = fixtures::stages_with(f);
-    for (uint64_t seed : {1, 2, 3}) {
+    const uint64_t last_seed = f.name.rfind("hidden:", 0) == 0 ? 1 : 3;
+    for (uint64_t seed = 1; seed <= last_seed; ++seed) {
         for (const TaskSpec& spec : manifest(part).tasks) {
             if (seed > 1 && !f.fails(spec.id)) continue;
             TaskResult t = grade_task(spec, environment(student, seed));
