@@ -71,7 +71,7 @@ std::vector<FlagSpec> flag_table() {
                  if (t == to_string(m)) o.display.tone_map = m;
          }},
         {{"--exposure"}, 1, [](Options& o, S f, V v) { o.display.exposure = parse_real_number(f, v[0], -64, 64); }},
-        {{"--accel"}, 1, [](Options& o, S f, V v) { o.accelerator.use_bvh = one_of(f, v[0], {"none", "bvh"}) == "bvh"; }},
+        {{"--accel"}, 1, [](Options& o, S f, V v) { o.accelerator.kind = parse_accel_kind(v[0], f); }},
         {{"--integrator"}, 1, [](Options& o, S f, V v) {
              std::string k = one_of(f, v[0], {"auto", "normals", "depth", "whitted", "direct", "path", "pm", "sppm"});
              for (IntegratorKind kind : {IntegratorKind::automatic, IntegratorKind::normals, IntegratorKind::depth,
@@ -86,6 +86,10 @@ std::vector<FlagSpec> flag_table() {
              std::string d = one_of(f, v[0], {"light", "hemisphere", "mis"});
              o.render.direct = d == "light" ? DirectStrategy::light
                                : d == "hemisphere" ? DirectStrategy::hemisphere : DirectStrategy::mis;
+         }},
+        {{"--mis-heuristic"}, 1, [](Options& o, S f, V v) {
+             std::string h = one_of(f, v[0], {"power", "balance"});
+             o.render.mis_heuristic = h == "power" ? MisHeuristic::power : MisHeuristic::balance;
          }},
         {{"--rr-depth"}, 1, [](Options& o, S f, V v) {
              // A whole number, or "off": no roulette (every path runs to -m).
@@ -220,7 +224,8 @@ std::string usage(const std::string& program, StageSet default_student) {
       << "  --hdr FILE.pfm|FILE.exr  also write the linear image\n"
       << "  --tonemap clamp|reinhard|filmic|local  display transform of the PNG      [clamp]\n"
       << "  --exposure EV   scale the PNG's radiance by 2^EV before tone mapping   [0]\n"
-      << "  --accel none|bvh                                                       [bvh]\n"
+      << "  --accel none|grid|kdtree|bvh|embree  acceleration structure (embree: only in\n"
+      << "                  builds with -DPT_WITH_EMBREE=ON)                       [bvh]\n"
       << "  --integrator auto|normals|depth|whitted|direct|path|pm|sppm            [auto]\n"
       << "  --photons N     pm: photons emitted for the global map                 [200000]\n"
       << "  --caustic-photons N  pm: photons emitted for the caustic map           [200000]\n"
@@ -236,6 +241,7 @@ std::string usage(const std::string& program, StageSet default_student) {
       << "  --stats FILE.json  seconds per phase, rays, spp, BVH, effects\n"
       << "  -q              no progress bar\n"
       << "  --direct light|hemisphere|mis                                          [light]\n"
+      << "  --mis-heuristic power|balance  MIS weights (--direct mis, path tracing)  [power]\n"
       << "  --rr-depth N|off  Russian roulette after N bounces, or none            [3]\n"
       << "  --clamp X       scale samples down to max component X (biased)         [off]\n"
       << "  --triangle moller|watertight                                           [moller]\n"

@@ -42,8 +42,8 @@ const char* const kHelp = R"(bench accuracy: what accuracy costs in time, for on
   --equal-time S      also render every technique for about S seconds and
                       write the images side by side with their error
                       (alone, without --budget: only the equal-time renders)
-  --techniques LIST   all, or some of: hemisphere, light, mis, adaptive,
-                      adaptive-cs184, adaptive-noguard, linear-scan,
+  --techniques LIST   all, or some of: hemisphere, light, mis, mis-balance,
+                      adaptive, adaptive-cs184, adaptive-noguard, linear-scan,
                       sampler-independent ... sampler-zsobol (or samplers
                       for all five), and for the path tracer (-m 2 or
                       more) rr-off, depth-1 ... depth-8 [all]
