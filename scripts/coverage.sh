@@ -19,8 +19,14 @@ launcher=()
 command -v ccache > /dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 
 mkdir -p "$build"
+# The student folder: the handout's files (stubs for what the solution does
+# not cover, e.g. later parts), overlaid with the solution's.
+student="$build/student"
+rm -rf "$student"
+cp -r "$root/assignments" "$student"
+cp -r "$solution"/part* "$student"/
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DPT_BUILD_TESTS=OFF \
-  -DPT_STUDENT_DIR="$solution" -DPT_STUDENT_COVERAGE=ON "${launcher[@]}" > "$build/configure.log" 2>&1 ||
+  -DPT_STUDENT_DIR="$student" -DPT_STUDENT_COVERAGE=ON "${launcher[@]}" > "$build/configure.log" 2>&1 ||
   { echo "coverage: cmake failed, see $build/configure.log" >&2; exit 2; }
 cmake --build "$build" -j2 --target grade > "$build/build.log" 2>&1 ||
   { echo "coverage: the build failed, see $build/build.log" >&2; exit 2; }
@@ -33,4 +39,4 @@ if [ "$status" -ge 2 ]; then
   exit 2
 fi
 [ "$status" -eq 0 ] || echo "coverage: note: the solution did not earn full marks (see $build/coverage_grade/report.md)"
-python3 "$root/scripts/coverage_report.py" "$build" "$solution" "$root/assignments"
+python3 "$root/scripts/coverage_report.py" "$build" "$student" "$root/assignments"
