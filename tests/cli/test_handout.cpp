@@ -82,7 +82,7 @@ TEST_CASE("handout.sh and --deliverables refuse bad input with exit 2 and one li
     CommandResult r = run("'" + source_path("scripts/handout.sh") + "' --level easy '" + dir + "/x'", dir);
     CHECK(r.exit_code == 2);
     CHECK(r.err == "handout: --level: expected guided or standard, got 'easy'\n");
-    write_file(dir + "/full/file", "x");
+    REQUIRE(run("mkdir -p '" + dir + "/full' && echo x > '" + dir + "/full/file'", dir).exit_code == 0);
     r = run("'" + source_path("scripts/handout.sh") + "' --level guided '" + dir + "/full'", dir);
     CHECK(r.exit_code == 2);
     r = run("'" + bin_path("part3") + "' --deliverables '" + dir + "/d' -s 4", dir);
