@@ -54,7 +54,7 @@ struct PhotonSettings {
     double radius = 0;
     int knn = 50;                       ///< --knn: photons per estimate (pm); 0 = fixed radius
     PhotonKernel kernel = PhotonKernel::epanechnikov;  ///< --photon-kernel
-    int passes = 16;                    ///< --passes (sppm)
+    int passes = 16;                    ///< --passes (sppm); 0: one per camera sample (-s)
     uint64_t photons_per_pass = 100000;  ///< --photons-per-pass (sppm)
     double alpha = 2.0 / 3.0;           ///< --alpha: fraction of new photons sppm keeps per pass
     PhotonView view = PhotonView::none;  ///< --photon-view

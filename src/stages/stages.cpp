@@ -74,7 +74,11 @@ Stages make_stages(StageSet student, TriangleTest triangle_test) {
     } else {
         s.sampler = {reference::stratified_sample_2d, reference::scrambled_radical_inverse};
     }
-    s.photon = {reference::emit_photon, reference::build_kdtree, reference::k_nearest, reference::density_estimate};
+    if (student.contains(Stage::photon)) {
+        s.photon = {student::emit_photon, student::build_kdtree, student::k_nearest, student::density_estimate};
+    } else {
+        s.photon = {reference::emit_photon, reference::build_kdtree, reference::k_nearest, reference::density_estimate};
+    }
     return s;
 }
 

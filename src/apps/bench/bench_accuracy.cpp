@@ -45,8 +45,10 @@ const char* const kHelp = R"(bench accuracy: what accuracy costs in time, for on
   --techniques LIST   all, or some of: hemisphere, light, mis, mis-balance,
                       adaptive, adaptive-cs184, adaptive-noguard, linear-scan,
                       sampler-independent ... sampler-zsobol (or samplers
-                      for all five), and for the path tracer (-m 2 or
-                      more) rr-off, depth-1 ... depth-8 [all]
+                      for all five), path, pm, sppm (photon mapping: give
+                      -m 100000 to compare with the uncapped path tracer),
+                      and for the path tracer (-m 2 or more) rr-off,
+                      depth-1 ... depth-8 [all]
   -r W H              resolution        [the scene's film, longer side 256]
   -t N                threads                    [all hardware threads]
   -l N, -m N          samples per area light, maximum depth   [1, 1]
@@ -114,6 +116,9 @@ AccuracyOptions parse_accuracy_options(const Args& a) {
     o.threads = a.get_int("-t", int(std::max(1u, std::thread::hardware_concurrency())), 1, 4096);
     o.baseline.light_samples = a.get_int("-l", 1, 1, 1 << 20);
     o.baseline.max_depth = a.get_int("-m", 1, 0, 100000);
+    // SPPM (the baseline `auto` picks for point-light caustics, and the
+    // reference then) runs one pass per spp, so that doubling spp doubles its work.
+    o.baseline.photon.passes = 0;
     if (a.has("-a")) {
         o.baseline.samples_per_batch =
             parse_int("accuracy: -a (samples per batch)", a.values("-a")[0], 1, 1 << 20);
