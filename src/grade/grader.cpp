@@ -8,6 +8,7 @@
 #include "core/timer.h"
 #include "grade/check_registry.h"
 #include "grade/isolation.h"
+#include "grade/student_calls.h"
 
 namespace pt {
 
@@ -48,14 +49,19 @@ TaskResult grade_task(const TaskSpec& spec, const GradeEnvironment& env) {
         r = TaskResult{};
         r.status = TaskStatus::not_implemented;
         r.value = NAN;
-        r.message = e.what();
+        r.message = printable(e.what());
     } catch (const InputError&) {
         throw;
+    } catch (const RunnerOutputError& e) {
+        r = TaskResult{};
+        r.status = TaskStatus::fail;
+        r.value = NAN;
+        r.message = printable(e.what());
     } catch (const std::exception& e) {
         r = TaskResult{};
         r.status = TaskStatus::fail;
         r.value = NAN;
-        r.message = std::string("the student code threw an exception: ") + e.what();
+        r.message = "the student code threw an exception: " + printable(e.what());
     }
     r.part = spec.part;
     r.id = spec.id;

@@ -10,6 +10,7 @@
 #include "grade/params.h"
 #include "grade/reference_renders.h"
 #include "grade/stage_mix.h"
+#include "grade/student_calls.h"
 #include "image/colormap.h"
 #include "image/image_io.h"
 #include "image/metrics.h"
@@ -89,7 +90,13 @@ TaskResult check_image(const TaskSpec& spec, const GradeEnvironment& env) {
             parse_image_case(cases[i], where + ": params.cases[" + std::to_string(i) + "]");
         Scene scene = load_case_scene(c, env.assets_dir);
         // The student first: a stub fails at once, before any reference is rendered.
-        RenderResult student = render_case(scene, c, mixed, c.settings.spp, env.seed, env.threads);
+        RenderResult student =
+            student_render(scene, c, mixed, c.settings.spp, env.seed, env.threads);
+        if (call_mode() == CallMode::record) {  // the runner: only the student's renders
+            if (c.bias_spp != c.settings.spp)
+                student_render(scene, c, mixed, c.bias_spp, env.seed, env.threads);
+            continue;
+        }
         ReferenceRenders ref = reference_renders(scene, c, runs, env);
         if (c.converged_spp == c.settings.spp) {
             // A case without a converged reference must be free of noise: the
@@ -104,7 +111,7 @@ TaskResult check_image(const TaskSpec& spec, const GradeEnvironment& env) {
         RenderResult student_bias =
             c.bias_spp == c.settings.spp
                 ? student
-                : render_case(scene, c, mixed, c.bias_spp, env.seed, env.threads);
+                : student_render(scene, c, mixed, c.bias_spp, env.seed, env.threads);
         NoiseInputs inputs{student.image,     student_bias.image,  c.bias_spp, ref.converged,
                            ref.converged_spp, ref.sample_variance, ref.runs};
         if (c.settings.adaptive) inputs.bias_counts = &student_bias.sample_counts;
