@@ -18,6 +18,13 @@
 namespace pt {
 namespace {
 
+/// A student render with less than this fraction of the relMSE of the
+/// reference's own renders at the same spp is flagged as suspicious: the
+/// mean of 8 reference renders of 64x64 pixels has a relative spread of a
+/// few percent, and a correct estimator at the same spp cannot do 4 times
+/// better except with a better sampler.
+constexpr double kSuspiciousRatio = 0.25;
+
 std::string fmt(const char* format, double v) {
     char buf[64];
     std::snprintf(buf, sizeof buf, format, v);
@@ -168,6 +175,18 @@ TaskResult check_image(const TaskSpec& spec, const GradeEnvironment& env) {
             {"heat map scale", "per-pixel relMSE, log scale " + fmt("%.3g", scale.low) + " .. " +
                                    fmt("%.3g", scale.high)},
         };
+        // Far less error than any render at this spp can have: it was not
+        // rendered at this spp (a copied or read reference). Flagged, not failed.
+        if (v.reference_relmse > 0 && v.student_relmse < kSuspiciousRatio * v.reference_relmse) {
+            std::string flag = "SUSPICIOUS: relMSE " + fmt("%.3g", v.student_relmse) +
+                               " is under " + fmt("%.2g", kSuspiciousRatio) +
+                               " x the reference's own at the same spp (" +
+                               fmt("%.3g", v.reference_relmse) +
+                               "); was this image rendered at " + std::to_string(c.settings.spp) +
+                               " spp?";
+            out.message = flag + "; " + out.message;
+            result.details.push_back("case " + std::to_string(i + 1) + " " + flag);
+        }
         result.images.push_back(out);
         result.details.push_back("case " + std::to_string(i + 1) + " " + out.label + ": " +
                                  (out.pass ? "pass: " : "FAIL: ") + out.message);

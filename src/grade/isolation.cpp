@@ -125,7 +125,11 @@ TaskResult grade_task_isolated(const TaskSpec& spec, const GradeEnvironment& env
     // that kill_leftover_children finds them.
     prctl(PR_SET_CHILD_SUBREAPER, 1);
     std::vector<std::string> command;
-    if (iso.runner) command = iso.runner(spec);
+    if (iso.runner) {
+        command = iso.sandbox_prefix;
+        for (const std::string& a : iso.runner(spec))
+            command.push_back(a);
+    }
     int fds[2];
     if (pipe2(fds, O_CLOEXEC) != 0)
         throw std::runtime_error(std::string("pipe: ") + std::strerror(errno));
@@ -144,7 +148,7 @@ TaskResult grade_task_isolated(const TaskSpec& spec, const GradeEnvironment& env
             for (std::string& a : command)
                 argv.push_back(a.data());
             argv.push_back(nullptr);
-            execv(argv[0], argv.data());
+            execvp(argv[0], argv.data());
             _exit(127);
         }
         std::string log;
@@ -163,47 +167,46 @@ TaskResult grade_task_isolated(const TaskSpec& spec, const GradeEnvironment& env
     }
 
     close(fds[1]);
+    // Read until the runner exits (not until end of file: a process it
+    // started may hold the pipe open), the deadline, or the size limit.
     std::string received;
-    bool timed_out = false, too_large = false;
+    bool timed_out = false, too_large = false, exited = false;
+    int status = 0;
     std::vector<char> buffer(1 << 20);
-    for (;;) {
-        double left = iso.timeout - timer.seconds();
-        if (left <= 0) {
-            timed_out = true;
-            break;
-        }
+    auto drain = [&](int wait_ms) {
         pollfd p{fds[0], POLLIN, 0};
-        int ready = poll(&p, 1, int(std::min(left, 3600.0) * 1000) + 1);
-        if (ready < 0 && errno == EINTR) continue;
-        if (ready <= 0) continue;  // the deadline is checked at the top
+        if (poll(&p, 1, wait_ms) <= 0) return false;
         ssize_t n = read(fds[0], buffer.data(), buffer.size());
-        if (n < 0 && errno == EINTR) continue;
-        if (n <= 0) break;  // end of file: the child has finished or died
+        if (n <= 0) {  // end of file: wait for the exit without spinning
+            if (wait_ms > 0) usleep(useconds_t(wait_ms) * 1000);
+            return false;
+        }
         if (double(received.size()) + double(n) > iso.max_log_bytes) {
             too_large = true;
-            break;
+            return false;
         }
         received.append(buffer.data(), size_t(n));
-    }
-    close(fds[0]);
-    if (timed_out || too_large) kill(-pid, SIGKILL), kill(pid, SIGKILL);
-    // The runner's whole group goes, whatever it did: nothing outlives its task.
-    int status = 0;
-    pid_t waited = 0;
-    for (;;) {
-        waited = waitpid(pid, &status, timed_out || too_large ? 0 : WNOHANG);
-        if (waited < 0 && errno == EINTR) continue;
-        if (waited == pid) break;
-        // Still running after closing its output (a grandchild holds no pipe,
-        // but the runner itself lingers): give it until the deadline.
+        return true;
+    };
+    while (!too_large) {
         if (timer.seconds() > iso.timeout) {
-            kill(-pid, SIGKILL), kill(pid, SIGKILL);
             timed_out = true;
-            while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+            break;
+        }
+        pid_t w = waitpid(pid, &status, WNOHANG);
+        if (w == pid) {
+            exited = true;
+            while (drain(0)) {
             }
             break;
         }
-        usleep(2000);
+        drain(20);
+    }
+    close(fds[0]);
+    if (!exited) {
+        kill(-pid, SIGKILL), kill(pid, SIGKILL);
+        while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+        }
     }
     kill(-pid, SIGKILL);
     kill_leftover_children();
@@ -226,6 +229,9 @@ TaskResult grade_task_isolated(const TaskSpec& spec, const GradeEnvironment& env
         return failed(spec, "the student code crashed: " + signal_name(sig) + why, seconds);
     }
     const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    // bwrap exits with 128 + the signal that killed the runner.
+    if (!iso.sandbox_prefix.empty() && code > 128 && code < 128 + 32 && received.empty())
+        return failed(spec, "the student code crashed: " + signal_name(code - 128), seconds);
     if (code == 127 && received.empty())
         return failed(spec, "the runner for this task could not be started (is it built?)", seconds);
     if (code != 0 || received.empty() || uint8_t(received.back()) != 255)

@@ -31,12 +31,16 @@ struct Isolation {
     /// The command that runs a task's runner (see grade_main.cpp); empty
     /// function: fork this process and record env.student.
     std::function<std::vector<std::string>(const TaskSpec&)> runner;
+    /// Put before the runner's command: the bwrap sandbox (sandbox.h); empty: none.
+    std::vector<std::string> sandbox_prefix;
+    /// Wall-clock seconds for all the tasks of one submission (0 = none):
+    /// once spent, the remaining tasks fail without running.
+    double budget = 0;
     /// Resource limits of the child (setrlimit; 0 = unlimited).
     double memory_bytes = 8e9;       ///< address space
     double file_bytes = 256e6;       ///< largest file it may write
     int open_files = 256;            ///< file descriptors
     double max_log_bytes = 512e6;    ///< the largest log the parent accepts
-    std::string isolation_used;      ///< set by the caller: for the report
 };
 
 TaskResult grade_task_isolated(const TaskSpec& spec, const GradeEnvironment& env,
