@@ -71,11 +71,12 @@ std::vector<FlagSpec> flag_table() {
                  if (t == to_string(m)) o.display.tone_map = m;
          }},
         {{"--exposure"}, 1, [](Options& o, S f, V v) { o.display.exposure = parse_real_number(f, v[0], -64, 64); }},
-        {{"--accel"}, 1, [](Options& o, S f, V v) { o.accelerator.use_bvh = one_of(f, v[0], {"none", "bvh"}) == "bvh"; }},
+        {{"--accel"}, 1, [](Options& o, S f, V v) { o.accelerator.kind = parse_accel_kind(v[0], f); }},
         {{"--integrator"}, 1, [](Options& o, S f, V v) {
-             std::string k = one_of(f, v[0], {"auto", "normals", "depth", "whitted", "direct", "path"});
+             std::string k = one_of(f, v[0], {"auto", "normals", "depth", "whitted", "direct", "path", "pm", "sppm"});
              for (IntegratorKind kind : {IntegratorKind::automatic, IntegratorKind::normals, IntegratorKind::depth,
-                                         IntegratorKind::whitted, IntegratorKind::direct, IntegratorKind::path})
+                                         IntegratorKind::whitted, IntegratorKind::direct, IntegratorKind::path,
+                                         IntegratorKind::pm, IntegratorKind::sppm})
                  if (k == to_string(kind)) o.render.integrator = kind;
          }},
         {{"--student"}, 1, [](Options& o, S f, V v) { o.student = StageSet::parse(v[0], f); }},
@@ -118,6 +119,29 @@ std::vector<FlagSpec> flag_table() {
         {{"--adaptive"}, 1, [](Options& o, S f, V v) {
              o.render.adaptive_rule = one_of(f, v[0], {"split", "cs184"}) == "split" ? AdaptiveRule::split : AdaptiveRule::cs184;
          }},
+        {{"--photons"}, 1, [](Options& o, S f, V v) { o.render.photon.photons = uint64_t(parse_whole_number(f, v[0], 0, 1ll << 32)); }},
+        {{"--caustic-photons"}, 1, [](Options& o, S f, V v) {
+             o.render.photon.caustic_photons = uint64_t(parse_whole_number(f, v[0], 0, 1ll << 32));
+         }},
+        {{"--radius"}, 1, [](Options& o, S f, V v) { o.render.photon.radius = parse_real_number(f, v[0], 0, 1e300, true); }},
+        {{"--knn"}, 1, [](Options& o, S f, V v) { o.render.photon.knn = int(parse_whole_number(f, v[0], 1, 1 << 20)); }},
+        {{"--photon-kernel"}, 1, [](Options& o, S f, V v) {
+             std::string k = one_of(f, v[0], {"box", "cone", "epanechnikov"});
+             for (PhotonKernel kernel : {PhotonKernel::box, PhotonKernel::cone, PhotonKernel::epanechnikov})
+                 if (k == to_string(kernel)) o.render.photon.kernel = kernel;
+         }},
+        {{"--passes"}, 1, [](Options& o, S f, V v) { o.render.photon.passes = int(parse_whole_number(f, v[0], 1, 1 << 24)); }},
+        {{"--photons-per-pass"}, 1, [](Options& o, S f, V v) {
+             o.render.photon.photons_per_pass = uint64_t(parse_whole_number(f, v[0], 1, 1ll << 32));
+         }},
+        {{"--alpha"}, 1, [](Options& o, S f, V v) {
+             o.render.photon.alpha = parse_real_number(f, v[0], 0, 1, true);
+             if (!(o.render.photon.alpha < 1))
+                 throw InputError(f + ": expected a number in (0, 1) (the fraction of new photons kept), got '" + v[0] + "'");
+         }},
+        {{"--photon-view"}, 1, [](Options& o, S f, V v) {
+             o.render.photon.view = one_of(f, v[0], {"caustic", "global"}) == "caustic" ? PhotonView::caustic : PhotonView::global;
+         }},
         {{"-h", "--help"}, 0, [](Options& o, S, V) { o.help = true; }},
     };
 }
@@ -158,6 +182,15 @@ Options parse_options(const std::vector<std::string>& args, StageSet default_stu
     if (o.student.contains(Stage::sampler) &&
         std::find(args.begin(), args.end(), std::string("--sampler")) == args.end())
         o.render.sampler = SamplerKind::stratified;
+    // --radius alone asks for fixed-radius estimates; with --knn it caps the k-nearest search.
+    auto given = [&args](const char* flag) { return std::find(args.begin(), args.end(), std::string(flag)) != args.end(); };
+    if (given("--radius") && !given("--knn")) o.render.photon.knn = 0;
+    if (o.render.photon.view != PhotonView::none) {
+        if (o.render.integrator == IntegratorKind::automatic) o.render.integrator = IntegratorKind::pm;
+        if (o.render.integrator != IntegratorKind::pm)
+            throw InputError("--photon-view: shows pm's photon maps; it needs --integrator pm (or none), not '" +
+                             std::string(to_string(o.render.integrator)) + "'");
+    }
     if (o.help) return o;
     if (o.scene_path.empty()) throw InputError("no scene given (usage: [options] SCENE.json|MESH.obj; see --help)");
     if (!o.output.empty()) {
@@ -187,8 +220,18 @@ std::string usage(const std::string& program, StageSet default_student) {
       << "  --hdr FILE.pfm|FILE.exr  also write the linear image\n"
       << "  --tonemap clamp|reinhard|filmic|local  display transform of the PNG      [clamp]\n"
       << "  --exposure EV   scale the PNG's radiance by 2^EV before tone mapping   [0]\n"
-      << "  --accel none|bvh                                                       [bvh]\n"
-      << "  --integrator auto|normals|depth|whitted|direct|path                    [auto]\n"
+      << "  --accel none|grid|kdtree|bvh|embree  acceleration structure (embree: only in\n"
+      << "                  builds with -DPT_WITH_EMBREE=ON)                       [bvh]\n"
+      << "  --integrator auto|normals|depth|whitted|direct|path|pm|sppm            [auto]\n"
+      << "  --photons N     pm: photons emitted for the global map                 [200000]\n"
+      << "  --caustic-photons N  pm: photons emitted for the caustic map           [200000]\n"
+      << "  --radius R      pm: fixed search radius (largest one with --knn); sppm: initial radius\n"
+      << "                  (scene units)                                          [1% (pm), 2% (sppm) of the scene's radius]\n"
+      << "  --knn K         pm: photons per estimate (k nearest, within 5% of the scene's radius) [50]\n"
+      << "  --photon-kernel box|cone|epanechnikov  pm: density estimation kernel   [epanechnikov]\n"
+      << "  --photon-view caustic|global  pm: show one photon map's radiance estimate\n"
+      << "  --passes N, --photons-per-pass N  sppm: passes, photons traced per pass  [16, 100000]\n"
+      << "  --alpha A       sppm: fraction of new photons kept per pass, in (0, 1)  [0.667]\n"
       << "  --student LIST  stages with student code: camera,intersect,bvh,direct,global,adaptive,sampler,\n"
       << "                  all or none                                            [" << default_student.to_string() << "]\n"
       << "  --stats FILE.json  seconds per phase, rays, spp, BVH, effects\n"

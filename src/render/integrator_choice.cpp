@@ -53,6 +53,9 @@ IntegratorKind choose_integrator(const Scene& scene, const Effects& effects,
 
 std::string integrator_note(IntegratorKind kind, const Scene& scene,
                             const RenderSettings& settings) {
+    if ((kind == IntegratorKind::pm || kind == IntegratorKind::sppm) && settings.max_depth != 1)
+        return std::string(to_string(kind)) + " follows photon paths until Russian roulette ends them: -m " +
+               std::to_string(settings.max_depth) + " is not used";
     if (kind != IntegratorKind::whitted) return "";
     if (!scene.emitters.empty() || scene.environment)
         return "Whitted lights surfaces with area and sky lights by light sampling (-l), which "
@@ -75,6 +78,10 @@ std::unique_ptr<Integrator> make_integrator(IntegratorKind kind) {
             return make_whitted_integrator();
         case IntegratorKind::path:
             return make_path_integrator();
+        case IntegratorKind::pm:
+            return make_pm_integrator();
+        case IntegratorKind::sppm:
+            return make_sppm_integrator();
         default:
             break;
     }

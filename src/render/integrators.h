@@ -24,6 +24,12 @@ std::unique_ptr<Integrator> make_direct_integrator();
 std::unique_ptr<Integrator> make_whitted_integrator();
 /// Path tracing through the global stage (stages/global.h): -m, -o, Russian roulette.
 std::unique_ptr<Integrator> make_path_integrator();
+/// Photon mapping with a caustic and a global map and final gathering
+/// (render/pm_integrator.cpp); its maps are traced in prepare().
+std::unique_ptr<Integrator> make_pm_integrator();
+/// Stochastic progressive photon mapping: render_image hands the whole
+/// render to render_sppm (render/sppm.h); Li alone is not defined.
+std::unique_ptr<Integrator> make_sppm_integrator();
 
 }  // namespace pt
 

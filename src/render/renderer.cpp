@@ -8,11 +8,18 @@
 
 #include "core/progress.h"
 #include "core/timer.h"
+#include "render/sppm.h"
+#include "stages/integrator.h"
 #include "stages/render_context.h"
 
 namespace pt {
 
 RenderResult render_image(const RenderContext& context, const RenderOptions& options) {
+    // SPPM is a loop of whole-image passes, not a function per camera ray.
+    if (context.integrator.kind() == IntegratorKind::sppm) return render_sppm(context, options);
+    Timer prepare_timer;
+    context.integrator.prepare(context, std::max(1, options.threads));
+    const double prepare_seconds = prepare_timer.seconds();
     const int width = context.scene.film_width, height = context.scene.film_height;
     PixelRect area = options.cell.value_or(PixelRect{0, 0, width, height});
     constexpr int kTile = 16;
@@ -42,7 +49,7 @@ RenderResult render_image(const RenderContext& context, const RenderOptions& opt
                 for (int y = y0; y < y1 && !abort; ++y) {
                     for (int x = x0; x < x1 && !abort; ++x) {
                         // A time-limited render (bench) gives up between pixels.
-                        if (options.time_limit > 0 && timer.seconds() > options.time_limit) {
+                        if (options.time_limit > 0 && timer.seconds() + prepare_seconds > options.time_limit) {
                             out_of_time = abort = true;
                             break;
                         }
@@ -75,7 +82,7 @@ RenderResult render_image(const RenderContext& context, const RenderOptions& opt
     for (int i = 1; i < threads; ++i) pool.emplace_back(worker);
     worker();  // the calling thread works too
     for (std::thread& t : pool) t.join();
-    result.seconds = timer.seconds();
+    result.seconds = timer.seconds() + prepare_seconds;
     if (failure) std::rethrow_exception(failure);
     result.complete = !out_of_time;
     progress.finish();

@@ -21,6 +21,14 @@ public:
     /// Incident radiance at the ray origin from direction -ray.d.
     virtual Color Li(const RenderContext& context, const Ray& ray, Rng& rng) const = 0;
     virtual IntegratorKind kind() const = 0;
+    /// Work before the first camera ray (photon mapping traces its photons
+    /// here), called once per render by render_image with its thread count.
+    /// Integrators that keep what they prepare hold it in mutable members:
+    /// Li stays const and thread-safe once prepare has returned.
+    virtual void prepare(const RenderContext& context, int threads) const {
+        (void)context;
+        (void)threads;
+    }
 };
 
 }  // namespace pt

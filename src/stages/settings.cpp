@@ -27,6 +27,26 @@ const char* to_string(IntegratorKind k) {
         case IntegratorKind::whitted: return "whitted";
         case IntegratorKind::direct: return "direct";
         case IntegratorKind::path: return "path";
+        case IntegratorKind::pm: return "pm";
+        case IntegratorKind::sppm: return "sppm";
+    }
+    return "?";
+}
+
+const char* to_string(PhotonKernel k) {
+    switch (k) {
+        case PhotonKernel::box: return "box";
+        case PhotonKernel::cone: return "cone";
+        case PhotonKernel::epanechnikov: return "epanechnikov";
+    }
+    return "?";
+}
+
+const char* to_string(PhotonView v) {
+    switch (v) {
+        case PhotonView::none: return "none";
+        case PhotonView::caustic: return "caustic";
+        case PhotonView::global: return "global";
     }
     return "?";
 }

@@ -24,6 +24,34 @@ enum class IntegratorKind {
     whitted,    ///< point and directional lights, hard shadows, mirror and glass
     direct,     ///< emission plus direct light (paths of at most one bounce)
     path,       ///< path tracing with -m, -o and Russian roulette
+    pm,         ///< photon mapping, Jensen's two passes with final gathering (render/pm_integrator.cpp)
+    sppm,       ///< stochastic progressive photon mapping (render/sppm.h)
+};
+
+/// The kernel of a photon density estimate (stages/photon.h), `--photon-kernel`.
+enum class PhotonKernel {
+    box,           ///< 1 / (pi r^2) over the disk
+    cone,          ///< Jensen's cone filter, 3 (1 - d / r) / (pi r^2)
+    epanechnikov,  ///< 2 (1 - d^2 / r^2) / (pi r^2), the kernel of least mean integrated squared error
+};
+
+/// What `--photon-view` shows instead of the image: one photon map's radiance estimate.
+enum class PhotonView { none, caustic, global };
+
+/// Photon mapping's parameters (`--photons` ... `--alpha`; docs/photon_mapping.md).
+struct PhotonSettings {
+    uint64_t photons = 200000;          ///< --photons: emitted for the global map (pm)
+    uint64_t caustic_photons = 200000;  ///< --caustic-photons: emitted for the caustic map (pm)
+    /// --radius: pm's fixed search radius (or, with --knn, the largest one);
+    /// sppm's initial radius. Scene units; 0 = a fraction of the scene's size.
+    double radius = 0;
+    int knn = 50;                       ///< --knn: photons per estimate (pm); 0 = fixed radius
+    PhotonKernel kernel = PhotonKernel::epanechnikov;  ///< --photon-kernel
+    int passes = 16;                    ///< --passes (sppm)
+    uint64_t photons_per_pass = 100000;  ///< --photons-per-pass (sppm)
+    double alpha = 2.0 / 3.0;           ///< --alpha: fraction of new photons sppm keeps per pass
+    PhotonView view = PhotonView::none;  ///< --photon-view
+    int max_bounces = 100;              ///< a photon path's hard cap (Russian roulette ends it sooner)
 };
 
 /// How adaptive sampling decides that a pixel may stop (`--adaptive`).
@@ -35,6 +63,8 @@ enum class AdaptiveRule {
 const char* to_string(DirectStrategy s);
 const char* to_string(AdaptiveRule r);
 const char* to_string(IntegratorKind k);
+const char* to_string(PhotonKernel k);
+const char* to_string(PhotonView v);
 
 /// Code paths that the effects analysis (stages/effects.h) may switch off
 /// because the effect they simulate cannot contribute to the image. Here
@@ -69,6 +99,7 @@ struct RenderSettings {
     int rr_depth = 3;                 ///< --rr-depth N: paths of up to N bounces never meet roulette
     double clamp = 0;                 ///< --clamp X: each sample's max component <= X (biased); 0 = off
     int whitted_max_specular = 8;     ///< specular bounces the Whitted integrator follows
+    PhotonSettings photon;            ///< --photons ... (pm, sppm)
     CodePaths force;                  ///< debug: code paths run even when the analysis skips them
 };
 

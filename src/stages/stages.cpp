@@ -1,7 +1,11 @@
 #include "stages/stages.h"
 
+#include "core/error.h"
 #include "scene/scene.h"
 #include "stages/bvh.h"
+#include "stages/embree_accel.h"
+#include "stages/kd_tree.h"
+#include "stages/uniform_grid.h"
 
 namespace pt {
 namespace {
@@ -63,12 +67,51 @@ Stages make_stages(StageSet student, TriangleTest triangle_test) {
     } else {
         s.sampler = {reference::stratified_sample_2d, reference::scrambled_radical_inverse};
     }
+    s.photon = {reference::emit_photon, reference::build_kdtree, reference::k_nearest, reference::density_estimate};
     return s;
+}
+
+namespace {
+constexpr AccelKind kAccelKinds[] = {AccelKind::none, AccelKind::grid, AccelKind::kdtree, AccelKind::bvh,
+                                     AccelKind::embree};
+}  // namespace
+
+const char* to_string(AccelKind kind) {
+    switch (kind) {
+        case AccelKind::none:
+            return "none";
+        case AccelKind::grid:
+            return "grid";
+        case AccelKind::kdtree:
+            return "kdtree";
+        case AccelKind::bvh:
+            return "bvh";
+        case AccelKind::embree:
+            return "embree";
+    }
+    return "?";
+}
+
+AccelKind parse_accel_kind(const std::string& name, const std::string& flag) {
+    for (AccelKind k : kAccelKinds)
+        if (name == to_string(k)) return k;
+    throw InputError(flag + ": expected one of none, grid, kdtree, bvh, embree, got '" + name + "'");
 }
 
 std::unique_ptr<Accelerator> build_accelerator(const Scene& scene, const Stages& stages,
                                                const AcceleratorSettings& settings) {
-    if (!settings.use_bvh) return make_linear_scan(scene, stages.intersect);
+    switch (settings.kind) {
+        case AccelKind::none:
+            return make_linear_scan(scene, stages.intersect);
+        case AccelKind::grid:
+            return make_uniform_grid(scene, stages.intersect);
+        case AccelKind::kdtree:
+            return make_kd_tree(scene, stages.intersect);
+        case AccelKind::embree:
+            return make_embree_accelerator(scene, stages.intersect);
+        case AccelKind::bvh:
+            break;
+    }
     return stages.bvh.build(scene, stages.intersect, settings);
 }
 

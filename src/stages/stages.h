@@ -17,6 +17,7 @@
 #include "stages/direct.h"
 #include "stages/global.h"
 #include "stages/intersect.h"
+#include "stages/photon.h"
 #include "stages/sampler.h"
 #include "stages/stage_set.h"
 
@@ -24,9 +25,22 @@ namespace pt {
 
 struct Scene;
 
+/// The acceleration structure (`--accel`).
+enum class AccelKind {
+    none,    ///< linear scan: every primitive for every ray
+    grid,    ///< uniform grid, 3D-DDA (stages/uniform_grid.h)
+    kdtree,  ///< SAH kd-tree (stages/kd_tree.h)
+    bvh,     ///< the bvh stage: the reference BVH, or the student's (Part 2)
+    embree,  ///< Embree 3, when built with -DPT_WITH_EMBREE=ON (stages/embree_accel.h)
+};
+
+/// "none", "grid", "kdtree", "bvh", "embree"; otherwise InputError naming `flag`.
+AccelKind parse_accel_kind(const std::string& name, const std::string& flag = "--accel");
+const char* to_string(AccelKind kind);
+
 /// How the accelerator is built (`--accel`, `--bvh-split`, `--max-leaf`).
 struct AcceleratorSettings {
-    bool use_bvh = true;       ///< false: linear scan (`--accel none`)
+    AccelKind kind = AccelKind::bvh;  ///< `--accel`
     std::string split = "sah";  ///< sah | median | middle
     int max_leaf = 4;          ///< at most this many primitives per leaf when a split is possible
 };
@@ -53,6 +67,7 @@ struct Stages {
     DirectStage direct;
     GlobalStage global;
     SamplerStage sampler;
+    PhotonStage photon;
 
     bool is_student(Stage s) const { return student.contains(s); }
 };
@@ -65,7 +80,8 @@ enum class TriangleTest { moller, watertight };
 /// reference intersect stage uses `triangle_test` for triangles.
 Stages make_stages(StageSet student, TriangleTest triangle_test = TriangleTest::moller);
 
-/// The scene's accelerator: the linear scan for `--accel none`, else the bvh stage's.
+/// The scene's accelerator: the linear scan for `--accel none`, the grid,
+/// the kd-tree, Embree, or (`--accel bvh`) the bvh stage's.
 std::unique_ptr<Accelerator> build_accelerator(const Scene& scene, const Stages& stages,
                                                const AcceleratorSettings& settings);
 

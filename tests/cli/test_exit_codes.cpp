@@ -53,7 +53,7 @@ TEST_CASE("bad flags exit 2 with one line naming the flag") {
         {"-m x " + kScene, "-m: expected a whole number"},
         {"-o 2 " + kScene, "-o: expected a whole number in [0, 1]"},
         {"-a 32 " + kScene, "-a (max tolerance): expected a number > 0"},
-        {"--accel kd " + kScene, "--accel: expected one of none, bvh, got 'kd'"},
+        {"--accel kd " + kScene, "--accel: expected one of none, grid, kdtree, bvh, embree, got 'kd'"},
         {"--student camra " + kScene, "--student: unknown stage 'camra'"},
         {"--frobnicate " + kScene, "--frobnicate: unknown option"},
         {"-s", "-s: expected 1 value after it"},

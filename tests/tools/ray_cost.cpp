@@ -50,8 +50,7 @@ int run(const std::vector<std::string>& args) {
             count = size_t(parse_whole_number(a, value(), 1, 1ll << 32));
         } else if (a == "--accel") {
             const std::string& v = value();
-            if (v != "none" && v != "bvh") throw InputError("--accel: expected none or bvh, got '" + v + "'");
-            accel.use_bvh = v == "bvh";
+            accel.kind = parse_accel_kind(v, "--accel");
         } else if (a.size() > 1 && a[0] == '-') {
             throw InputError(a + ": unknown option (ray_cost --help)");
         } else if (scene_path.empty()) {

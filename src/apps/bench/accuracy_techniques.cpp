@@ -55,7 +55,7 @@ const std::vector<Technique>& all_techniques() {
         {"rr-off", "no Russian roulette (--rr-depth off): paths end only at -m or a miss", "light",
          [](TechniqueConfig& c) { c.settings.russian_roulette = false; }, true},
         {"linear-scan", "no BVH: every ray tests every primitive (--accel none)", "light",
-         [](TechniqueConfig& c) { c.accelerator.use_bvh = false; }},
+         [](TechniqueConfig& c) { c.accelerator.kind = AccelKind::none; }},
         {"depth-1", "-m 1: at most 1 bounce (biased against the baseline's -m)", "light",
          cap_depth<1>, true},
         {"depth-2", "-m 2: at most 2 bounces", "light", cap_depth<2>, true},

@@ -209,7 +209,7 @@ SceneResult measure_scene(const std::string& path, const BvhOptions& o) {
         std::cerr << "bench bvh: " << r.name << ": rendering without the BVH (budget "
                   << fixed(budget, 0) << " s)\n";
         AcceleratorSettings none;
-        none.use_bvh = false;
+        none.kind = AccelKind::none;
         std::unique_ptr<Accelerator> linear = build_accelerator(scene, stages, none);
         RenderContext without{scene, *linear, stages, settings, *integrator};
         r.without_bvh = time_render_sampled(without, budget, 1);
