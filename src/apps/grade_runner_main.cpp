@@ -31,6 +31,13 @@ void write_all(int fd, const std::string& text) {
 
 int main(int argc, char** argv) {
     using namespace pt;
+    if (argc == 2 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h")) {
+        std::printf("usage: grade_runner_%s --manifest FILE --task ID --seed N --threads N --assets DIR\n"
+                    "The untrusted half of grade (docs/grading.md): runs one task's student code and\n"
+                    "writes the raw log of its outputs to file descriptor 3. grade starts it.\n",
+                    PT_RUNNER_KEY);
+        return 0;
+    }
     std::string manifest, task, assets;
     uint64_t seed = 1;
     int threads = 1;
