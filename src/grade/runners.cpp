@@ -38,6 +38,9 @@ const std::vector<Runner>& runners() {
         {"estimate_direct_lighting_importance",
          {"direct.estimate_direct_lighting_importance", "direct.one_bounce_radiance"}},
         {"one_bounce_radiance", {"direct.one_bounce_radiance"}},
+        {"mis_heuristics", {"direct.power_heuristic", "direct.balance_heuristic"}},
+        {"estimate_direct_lighting_mis",
+         {"direct.estimate_direct_lighting_mis", "direct.one_bounce_radiance"}},
         {"at_least_one_bounce_radiance", {"global.at_least_one_bounce_radiance"}},
         {"est_radiance_global_illumination", {"global.est_radiance_global_illumination"}},
     };

@@ -377,6 +377,9 @@ PT_ACCESS(estimate_direct_lighting_importance, direct.estimate_direct_lighting_i
 PT_ACCESS(one_bounce_radiance, direct.one_bounce_radiance)
 PT_ACCESS(at_least_one_bounce_radiance, global.at_least_one_bounce_radiance)
 PT_ACCESS(est_radiance_global_illumination, global.est_radiance_global_illumination)
+PT_ACCESS(power_heuristic, direct.power_heuristic)
+PT_ACCESS(balance_heuristic, direct.balance_heuristic)
+PT_ACCESS(estimate_direct_lighting_mis, direct.estimate_direct_lighting_mis)
 PT_ACCESS(stratified_sample_2d, sampler.stratified_sample_2d)
 PT_ACCESS(scrambled_radical_inverse, sampler.scrambled_radical_inverse)
 #undef PT_ACCESS
@@ -423,6 +426,9 @@ const SlotEntry kSlots[] = {
     PT_SLOT(17, global, est_radiance_global_illumination),
     PT_SLOT(18, sampler, stratified_sample_2d),
     PT_SLOT(19, sampler, scrambled_radical_inverse),
+    PT_SLOT(20, direct, power_heuristic),
+    PT_SLOT(21, direct, balance_heuristic),
+    PT_SLOT(22, direct, estimate_direct_lighting_mis),
 };
 
 #undef PT_SLOT

@@ -3,6 +3,7 @@
 // only in the runners. Calling one of these is a bug of the grader.
 #include <stdexcept>
 
+#include "stages/photon.h"
 #include "stages/stages.h"
 
 namespace pt::student {
@@ -49,6 +50,20 @@ Color at_least_one_bounce_radiance(const RenderContext&, const Ray&, const Surfa
 }
 Color est_radiance_global_illumination(const RenderContext&, const Ray&, Rng&) {
     absent("est_radiance_global_illumination");
+}
+double power_heuristic(double, double, double, double) { absent("power_heuristic"); }
+double balance_heuristic(double, double, double, double) { absent("balance_heuristic"); }
+Color estimate_direct_lighting_mis(const RenderContext&, const Ray&, const SurfaceInteraction&,
+                                   Rng&) {
+    absent("estimate_direct_lighting_mis");
+}
+EmittedPhoton emit_photon(const Light&, double, uint64_t, Vec2, Vec2) { absent("emit_photon"); }
+KdTree build_kdtree(const std::vector<Vec3>&) { absent("build_kdtree"); }
+void k_nearest(const KdTree&, const Vec3&, int, double, std::vector<Neighbor>&) {
+    absent("k_nearest");
+}
+Color density_estimate(const std::vector<PhotonContribution>&, double, PhotonKernel) {
+    absent("density_estimate");
 }
 Vec2 stratified_sample_2d(int, int, int, Vec2) { absent("stratified_sample_2d"); }
 double scrambled_radical_inverse(uint64_t, const DigitPermutation&) {

@@ -80,6 +80,16 @@ Color one_bounce_radiance(const RenderContext&, const Ray&, const SurfaceInterac
     withheld("one_bounce_radiance");
 }
 #endif
+#ifdef PT_WITHHOLD_MIS_HEURISTICS
+double power_heuristic(double, double, double, double) { withheld("power_heuristic"); }
+double balance_heuristic(double, double, double, double) { withheld("balance_heuristic"); }
+#endif
+#ifdef PT_WITHHOLD_ESTIMATE_MIS
+Color estimate_direct_lighting_mis(const RenderContext&, const Ray&, const SurfaceInteraction&,
+                                   Rng&) {
+    withheld("estimate_direct_lighting_mis");
+}
+#endif
 #ifdef PT_WITHHOLD_AT_LEAST_ONE_BOUNCE
 Color at_least_one_bounce_radiance(const RenderContext&, const Ray&, const SurfaceInteraction&,
                                    const Color&, Rng&) {
