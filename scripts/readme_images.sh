@@ -33,12 +33,16 @@ images=(
   "materials.png|-r 384 192 -s 256 -l 4 -m 8 assets/scenes/materials.json"
   "materials_dof.png|-r 384 192 -s 256 -l 4 -m 8 -b 0.08 -d 4.2 assets/scenes/materials.json"
   "whitted.png|-r 320 240 -s 16 assets/scenes/whitted.json"
-  "whitted_path.png|-r 320 240 -s 256 -m 8 assets/scenes/whitted.json"
+  "whitted_path.png|-r 320 240 -s 256 -m 8 --integrator path assets/scenes/whitted.json"
   "adaptive_cbox.png|-r 256 256 -s 1024 -a 32 0.05 assets/scenes/cbox.json"
   "glossy.png|-r 640 256 -s 64 -m 8 assets/scenes/glossy.json"
   "textures.png|-r 512 256 -s 64 -m 4 assets/scenes/textures.json"
   "camera_orthographic.png|-r 256 256 -s 64 -m 4 assets/scenes/camera_orthographic.json"
   "camera_fisheye.png|-r 256 256 -s 64 -m 4 assets/scenes/camera_fisheye.json"
+  "mirror_pm.png|-r 200 150 -s 16 --integrator pm assets/scenes/caustic_mirror.json"
+  "mirror_path.png|-r 200 150 -s 64 -m 100000 --integrator path assets/scenes/caustic_mirror.json"
+  "mirror_caustic_map.png|-r 200 150 -s 4 --photon-view caustic assets/scenes/caustic_mirror.json"
+  "bulb_pm.png|-r 200 150 -s 16 --integrator pm assets/scenes/light_bulb.json"
 )
 for m in 0 1 2 3 4 5; do
   images+=("cbox_m${m}_o1.png|-r 128 128 -s 256 -m $m assets/scenes/cbox.json")

@@ -67,7 +67,7 @@ Color one_bounce_radiance(const RenderContext& context, const Ray& ray,
     // TODO(part3.6): pick the estimator by context.settings.direct:
     // DirectStrategy::hemisphere (-H) -> estimate_direct_lighting_hemisphere,
     // DirectStrategy::light -> estimate_direct_lighting_importance,
-    // DirectStrategy::mis -> estimate_direct_lighting_mis (given, stages/mis.h).
+    // DirectStrategy::mis -> estimate_direct_lighting_mis (task 3.8, mis.cpp).
     (void)context, (void)ray, (void)isect, (void)rng;
     throw NotImplemented(3, "6", "one_bounce_radiance");
 }

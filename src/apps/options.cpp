@@ -87,6 +87,10 @@ std::vector<FlagSpec> flag_table() {
              o.render.direct = d == "light" ? DirectStrategy::light
                                : d == "hemisphere" ? DirectStrategy::hemisphere : DirectStrategy::mis;
          }},
+        {{"--mis-heuristic"}, 1, [](Options& o, S f, V v) {
+             std::string h = one_of(f, v[0], {"power", "balance"});
+             o.render.mis_heuristic = h == "power" ? MisHeuristic::power : MisHeuristic::balance;
+         }},
         {{"--rr-depth"}, 1, [](Options& o, S f, V v) {
              // A whole number, or "off": no roulette (every path runs to -m).
              if (v[0] == "off") {
@@ -192,6 +196,10 @@ Options parse_options(const std::vector<std::string>& args, StageSet default_stu
             throw InputError("--photon-view: shows pm's photon maps; it needs --integrator pm (or none), not '" +
                              std::string(to_string(o.render.integrator)) + "'");
     }
+    // A student photon stage (part8) runs only in photon mapping: pm unless --integrator says otherwise.
+    if (o.student.contains(Stage::photon) && !o.student.contains(Stage::global) &&
+        o.render.integrator == IntegratorKind::automatic)
+        o.render.integrator = IntegratorKind::pm;
     if (o.help) return o;
     if (o.scene_path.empty()) throw InputError("no scene given (usage: [options] SCENE.json|MESH.obj; see --help)");
     if (!o.output.empty()) {
@@ -233,11 +241,12 @@ std::string usage(const std::string& program, StageSet default_student) {
       << "  --photon-view caustic|global  pm: show one photon map's radiance estimate\n"
       << "  --passes N, --photons-per-pass N  sppm: passes, photons traced per pass  [16, 100000]\n"
       << "  --alpha A       sppm: fraction of new photons kept per pass, in (0, 1)  [0.667]\n"
-      << "  --student LIST  stages with student code: camera,intersect,bvh,direct,global,adaptive,sampler,\n"
+      << "  --student LIST  stages with student code: camera,intersect,bvh,direct,global,adaptive,sampler,photon,\n"
       << "                  all or none                                            [" << default_student.to_string() << "]\n"
       << "  --stats FILE.json  seconds per phase, rays, spp, BVH, effects\n"
       << "  -q              no progress bar\n"
       << "  --direct light|hemisphere|mis                                          [light]\n"
+      << "  --mis-heuristic power|balance  MIS weights (--direct mis, path tracing)  [power]\n"
       << "  --rr-depth N|off  Russian roulette after N bounces, or none            [3]\n"
       << "  --clamp X       scale samples down to max component X (biased)         [off]\n"
       << "  --triangle moller|watertight                                           [moller]\n"

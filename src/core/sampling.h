@@ -171,4 +171,15 @@ inline double power_heuristic(double nf, double f_pdf, double ng, double g_pdf) 
     return 1.0 / (1.0 + r * r);
 }
 
+/// Veach's balance heuristic (Veach 1997, section 9.2.2):
+///     w_f = nf f_pdf / (nf f_pdf + ng g_pdf),
+/// written as 1 / (1 + r) with r = (ng g_pdf) / (nf f_pdf) for the same
+/// reason as power_heuristic; the same limits (0, 1, 0.5 for two deltas).
+inline double balance_heuristic(double nf, double f_pdf, double ng, double g_pdf) {
+    double f = nf * f_pdf, g = ng * g_pdf;
+    if (!(f > 0)) return 0.0;
+    if (std::isinf(f)) return std::isinf(g) ? 0.5 : 1.0;
+    return 1.0 / (1.0 + g / f);
+}
+
 }  // namespace pt

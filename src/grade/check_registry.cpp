@@ -75,6 +75,12 @@ const std::vector<CheckInfo>& all_checks() {
          {"scene", "points", "max_mismatches"},
          "one_bounce_radiance returns the estimate of the strategy the settings ask for (same "
          "random numbers)"},
+        {"mis_heuristics",
+         TaskType::function,
+         check_mis_heuristics,
+         {"cases", "rel_tol", "max_mismatches"},
+         "the power and balance heuristics against their closed forms, limits (zero, delta, 1e300) "
+         "and the sum of the two strategies' weights"},
         {"has_converged",
          TaskType::function,
          check_has_converged,

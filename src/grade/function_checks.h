@@ -71,6 +71,11 @@ TaskResult check_diffuse_sample_f(const TaskSpec& spec, const GradeEnvironment& 
 /// with the same random numbers (dispatch_checks.cpp).
 TaskResult check_one_bounce_radiance(const TaskSpec& spec, const GradeEnvironment& env);
 
+/// Part 3, power_heuristic and balance_heuristic: the weights against their
+/// closed forms on random counts and densities, the limits of the contract
+/// (0, 1, 0.5 for two deltas, no overflow at 1e300), and weights summing to 1.
+TaskResult check_mis_heuristics(const TaskSpec& spec, const GradeEnvironment& env);
+
 /// Part 5, has_converged: CS184's interval rule on hand-made statistics;
 /// either answer where the rule says nothing reliable (adaptive_checks.cpp).
 TaskResult check_has_converged(const TaskSpec& spec, const GradeEnvironment& env);

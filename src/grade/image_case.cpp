@@ -67,6 +67,7 @@ ImageCase parse_image_case(const json& j, const std::string& where) {
                                         "light_samples",
                                         "max_depth",
                                         "direct",
+                                        "mis_heuristic",
                                         "accumulate_bounces",
                                         "max_mean_spp",
                                         "bias_spp",
@@ -141,6 +142,12 @@ ImageCase parse_image_case(const json& j, const std::string& where) {
             if (d == to_string(s)) c.settings.direct = s, found = true;
         if (!found) throw InputError(where + ".direct: expected light, hemisphere or mis");
     }
+    if (j.contains("mis_heuristic")) {  // --mis-heuristic
+        std::string h = j["mis_heuristic"].is_string() ? j["mis_heuristic"].get<std::string>() : "";
+        if (h != "power" && h != "balance")
+            throw InputError(where + ".mis_heuristic: expected power or balance");
+        c.settings.mis_heuristic = h == "power" ? MisHeuristic::power : MisHeuristic::balance;
+    }
     if (j.contains("max_mean_spp")) {
         if (!j["max_mean_spp"].is_number())
             throw InputError(where + ".max_mean_spp: expected a number");
@@ -202,6 +209,7 @@ std::string case_fingerprint(const ImageCase& c, const std::string& assets_dir) 
         settings << " rr-off";
     else if (s.rr_depth != RenderSettings{}.rr_depth)
         settings << " rr" << s.rr_depth;
+    if (s.mis_heuristic != MisHeuristic::power) settings << " " << to_string(s.mis_heuristic);
     char hex[17];
     std::snprintf(hex, sizeof hex, "%016llx",
                   (unsigned long long)fnv1a(settings.str(), fnv1a(inputs)));

@@ -1,7 +1,6 @@
 #include "grade/stage_mix.h"
 
 #include "core/error.h"
-#include "stages/mis.h"
 #include "stages/render_context.h"
 
 namespace pt {
@@ -37,6 +36,9 @@ const Slot kSlots[] = {
     PT_FUNCTION_SLOT(direct, estimate_direct_lighting_hemisphere),
     PT_FUNCTION_SLOT(direct, estimate_direct_lighting_importance),
     PT_FUNCTION_SLOT(direct, one_bounce_radiance),
+    PT_FUNCTION_SLOT(direct, power_heuristic),
+    PT_FUNCTION_SLOT(direct, balance_heuristic),
+    PT_FUNCTION_SLOT(direct, estimate_direct_lighting_mis),
     {"adaptive", Stage::adaptive,
      [](Stages& to, const Stages& from) { to.adaptive = from.adaptive; }},
     PT_FUNCTION_SLOT(adaptive, has_converged),
@@ -60,7 +62,7 @@ Color one_bounce_through_table(const RenderContext& context, const Ray& ray,
         case DirectStrategy::light:
             return stage.estimate_direct_lighting_importance(context, ray, isect, rng);
         case DirectStrategy::mis:
-            return estimate_direct_lighting_mis(context, ray, isect, rng);
+            return stage.estimate_direct_lighting_mis(context, ray, isect, rng);
     }
     return Color(0);
 }

@@ -9,6 +9,9 @@
 //            non-specular to bounce between): exact, no Monte Carlo noise
 //   direct   -m 0; or -m 1 when no mirror or glass can show an area light or
 //            the sky (a reflection of a lamp is a one-bounce path)
+//   sppm     light from point or directional lights reaches a non-specular
+//            surface through mirrors or glass (-m >= 2): caustics (and S D S
+//            paths) that no camera path can find; photon mapping carries them
 //   path     everything else (-m >= 2 with area or sky light, or diffuse
 //            interreflection; -m 1 with lamps seen in mirrors or glass)
 #include <stdexcept>
@@ -42,6 +45,10 @@ IntegratorKind choose_integrator(const Scene& scene, const Effects& effects,
                               : "only point and directional lights, and no surface that light "
                                 "could bounce between: exact, no noise but anti-aliasing");
     if (m == 0) return because(IntegratorKind::direct, "-m 0: emission only");
+    if (effects.point_light_caustics)
+        return because(IntegratorKind::sppm,
+                       "point or directional light reaches diffuse surfaces through mirrors or glass: "
+                       "caustics that no path from the camera can find, so photon mapping (sppm) carries them");
     const bool specular = effects.mirror || effects.refraction;
     if (m == 1 && !(specular && !only_delta_lights))
         return because(IntegratorKind::direct, "-m 1: emission and direct light");

@@ -87,10 +87,12 @@ RenderResult render_sppm(const RenderContext& context, const RenderOptions& opti
     RenderResult result;
     result.image = Image(scene.film_width, scene.film_height);
     result.sample_counts.assign(size_t(scene.film_width) * scene.film_height, 0);
-    Progress progress("sppm", uint64_t(ps.passes), options.show_progress);
+    // passes 0: one pass per camera sample of -s (bench accuracy's sweep doubles -s).
+    const int total_passes = ps.passes > 0 ? ps.passes : std::max(1, context.settings.spp);
+    Progress progress("sppm", uint64_t(total_passes), options.show_progress);
     Timer timer;
     int passes = 0;
-    while (passes < ps.passes) {
+    while (passes < total_passes) {
         const int pass = passes;
         // 1. Camera pass: visible points, emission and direct light.
         parallel_for(pixel_count, options.threads, result.counters, [&](size_t i) {

@@ -28,9 +28,10 @@
 //
 //     where theta' is the angle between the light's normal at p' and the
 //     direction back to p. Light::sample_Li (scene/light_set.h) returns it.
-// A third, beyond the course: estimate_direct_lighting_mis (stages/mis.h)
-// combines light samples and BSDF samples with Veach's power heuristic
-// (Veach 1997, chapter 9), robust for both small and large lights.
+// A third, task 3.8: estimate_direct_lighting_mis combines light samples and
+// BSDF samples, each weighted by a heuristic of task 3.7 (Veach 1997,
+// chapter 9; the file comment of stages/mis.h has the estimator), robust for
+// both small and large lights. --mis-heuristic picks power or balance.
 //
 // Sources: pbrt-v3 (Pharr, Jakob, Humphreys) chapters 13 (Monte Carlo, warps)
 // and 14 (light transport I: direct lighting, section 14.3); Veach, "Robust
@@ -57,6 +58,10 @@ struct SurfaceInteraction;
 
 using ZeroBounceFn = Color (*)(const RenderContext& context, const Ray& ray,
                                const SurfaceInteraction& isect);
+/// A multiple-importance weight (Veach 1997, section 9.2): of a sample drawn
+/// from strategy f (nf samples with density f_pdf) that strategy g (ng
+/// samples, density g_pdf) could also have drawn.
+using MisHeuristicFn = double (*)(double nf, double f_pdf, double ng, double g_pdf);
 using DirectEstimateFn = Color (*)(const RenderContext& context, const Ray& ray,
                                    const SurfaceInteraction& isect, Rng& rng);
 
@@ -88,6 +93,29 @@ struct DirectStage {
     /// Direct light at isect by the strategy of context.settings.direct:
     /// hemisphere, light (importance) or mis.
     DirectEstimateFn one_bounce_radiance;
+    /// The power heuristic with exponent 2 (Veach 1997, section 9.2.4):
+    ///     w_f = (nf f_pdf)^2 / ((nf f_pdf)^2 + (ng g_pdf)^2),
+    /// in [0, 1]; 0 when nf f_pdf is 0 (f cannot draw that sample), 1 when
+    /// it is infinite (a delta) and ng g_pdf finite, 0.5 for two deltas,
+    /// never NaN (densities up to 1e300 each: no overflow to inf / inf), and
+    /// w_f(nf, pf, ng, pg) + w_g(ng, pg, nf, pf) = 1 when either is non-zero.
+    MisHeuristicFn power_heuristic;
+    /// The balance heuristic (Veach 1997, section 9.2.2): w_f = nf f_pdf /
+    /// (nf f_pdf + ng g_pdf), with the same limits as power_heuristic.
+    MisHeuristicFn balance_heuristic;
+    /// Direct light at isect by multiple importance sampling. For every light,
+    /// n = light->sample_count(-l) light samples, each (when unblocked and
+    /// above the surface) adding f Le cos / pdf_light times its MIS weight
+    /// against nb = max(1, -l) BSDF samples (weight 1 for a delta light),
+    /// averaged per light and summed over lights; plus nb samples of
+    /// BSDF::sample_f, each adding the emission it finds (zero_bounce_radiance
+    /// of what it hits, or the environment when it escapes) times f cos /
+    /// pdf_bsdf times its weight against that light's n samples of density
+    /// pdf_Li, averaged over nb. The weights use power_heuristic or
+    /// balance_heuristic as context.settings.mis_heuristic says. Light from
+    /// below the surface counts only for a transmissive BSDF (|cos|). Black
+    /// for delta BSDFs. Unbiased: same mean as the other two estimators.
+    DirectEstimateFn estimate_direct_lighting_mis;
 };
 
 namespace reference {
@@ -101,6 +129,10 @@ Color estimate_direct_lighting_importance(const RenderContext& context, const Ra
                                           const SurfaceInteraction& isect, Rng& rng);
 Color one_bounce_radiance(const RenderContext& context, const Ray& ray,
                           const SurfaceInteraction& isect, Rng& rng);
+double power_heuristic(double nf, double f_pdf, double ng, double g_pdf);
+double balance_heuristic(double nf, double f_pdf, double ng, double g_pdf);
+Color estimate_direct_lighting_mis(const RenderContext& context, const Ray& ray,
+                                   const SurfaceInteraction& isect, Rng& rng);
 }  // namespace reference
 
 namespace student {
@@ -114,6 +146,10 @@ Color estimate_direct_lighting_importance(const RenderContext& context, const Ra
                                           const SurfaceInteraction& isect, Rng& rng);
 Color one_bounce_radiance(const RenderContext& context, const Ray& ray,
                           const SurfaceInteraction& isect, Rng& rng);
+double power_heuristic(double nf, double f_pdf, double ng, double g_pdf);
+double balance_heuristic(double nf, double f_pdf, double ng, double g_pdf);
+Color estimate_direct_lighting_mis(const RenderContext& context, const Ray& ray,
+                                   const SurfaceInteraction& isect, Rng& rng);
 }  // namespace student
 
 }  // namespace pt

@@ -22,6 +22,8 @@ std::vector<std::string> Effects::names() const {
     add(refraction, "refraction");
     add(diffuse_interreflection, "diffuse_interreflection");
     add(caustics, "caustics");
+    add(point_light_caustics, "point_light_caustics");
+    add(specular_diffuse_specular, "specular_diffuse_specular");
     add(depth_of_field, "depth_of_field");
     return out;
 }
@@ -153,6 +155,8 @@ Effects analyze_effects(const Scene& scene, const RenderSettings& settings) {
     // Delta lights cannot be reached by a path through a specular surface,
     // so caustics need an area light or the sky.
     e.caustics = (area || environment) && any_nonspecular && any_specular && m >= 2;
+    e.point_light_caustics = (point || directional) && any_nonspecular && any_specular && m >= 2;
+    e.specular_diffuse_specular = lit && any_nonspecular && any_specular && m >= 3;
     e.depth_of_field = scene.camera.lens_radius > 0;
     return e;
 }

@@ -48,6 +48,13 @@ struct Effects {
     bool diffuse_interreflection =
         false;              ///< light bouncing between non-specular surfaces (-m >= 2)
     bool caustics = false;  ///< light from area or sky lights focused by mirrors or glass (-m >= 2)
+    /// Light from point or directional lights through mirrors or glass onto
+    /// a non-specular surface (L S+ D, -m >= 2): no path from the camera can
+    /// find a delta light through a specular bounce, so only photon mapping carries it.
+    bool point_light_caustics = false;
+    /// Specular-diffuse-specular paths: a caustic seen in a mirror or through
+    /// glass (L S+ D S+ E, -m >= 3); with a point light, photon mapping's alone.
+    bool specular_diffuse_specular = false;
     bool depth_of_field = false;  ///< thin lens (-b > 0)
 
     /// Names of the effects present, in a fixed order ("area_lights", ...).

@@ -28,6 +28,9 @@ void build_range(KdTree& tree, std::vector<uint32_t>& order, const std::vector<V
     build_range(tree, order, input, mid + 1, hi);
 }
 
+/// Subtrees of at most this many points are scanned, not descended.
+constexpr size_t kScanBelow = 8;
+
 /// State of one k-nearest query: a max-heap of the best k found so far.
 struct KnnSearch {
     const KdTree& tree;
@@ -52,7 +55,11 @@ struct KnnSearch {
     }
 
     void visit(size_t lo, size_t hi) {
-        if (lo >= hi) return;
+        // A small subtree is cheaper to scan than to descend (a bucket).
+        if (hi - lo <= kScanBelow) {
+            for (size_t i = lo; i < hi; ++i) consider(i);
+            return;
+        }
         const size_t mid = lo + (hi - lo) / 2;
         const int axis = tree.axis[mid];
         const double delta = p[axis] - tree.points[mid][axis];
@@ -72,6 +79,13 @@ struct KnnSearch {
 
 void radius_visit(const KdTree& tree, const Vec3& p, double r2, size_t lo, size_t hi, std::vector<Neighbor>& out) {
     while (lo < hi) {
+        if (hi - lo <= kScanBelow) {
+            for (size_t i = lo; i < hi; ++i) {
+                const double d2 = (tree.points[i] - p).norm2();
+                if (d2 <= r2) out.push_back({tree.ids[i], d2});
+            }
+            return;
+        }
         const size_t mid = lo + (hi - lo) / 2;
         const double d2 = (tree.points[mid] - p).norm2();
         if (d2 <= r2) out.push_back({tree.ids[mid], d2});

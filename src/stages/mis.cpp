@@ -4,9 +4,17 @@
 #include <cmath>
 
 #include "core/sampling.h"
+#include "stages/direct.h"
 #include "stages/render_context.h"
 
 namespace pt {
+
+double mis_weight(const RenderContext& context, double nf, double f_pdf, double ng, double g_pdf) {
+    const DirectStage& stage = context.stages.direct;
+    return context.settings.mis_heuristic == MisHeuristic::balance
+               ? stage.balance_heuristic(nf, f_pdf, ng, g_pdf)
+               : stage.power_heuristic(nf, f_pdf, ng, g_pdf);
+}
 
 LightSampleContext light_sample_context(const SurfaceInteraction& isect, const BSDF& bsdf) {
     return {isect.p, bsdf.is_transmissive() ? Vec3(0, 0, 0) : bsdf.frame().n};
@@ -34,7 +42,7 @@ Color sample_lights_mis(const RenderContext& context, const SurfaceInteraction& 
             // No BSDF sample can find a delta light; without BSDF samples the weight is 1.
             double weight = s.is_delta || bsdf_samples == 0
                                 ? 1.0
-                                : power_heuristic(n, s.pdf, bsdf_samples, bsdf.pdf(wo, wi));
+                                : mis_weight(context, n, s.pdf, bsdf_samples, bsdf.pdf(wo, wi));
             sum += f * s.L * (weight * cos_i / s.pdf);
         }
         L += sum / double(n);
@@ -51,7 +59,17 @@ double bsdf_sample_mis_weight(const RenderContext& context, const LightSampleCon
     double light_pdf =
         hit ? light->pdf_Li(ref, wi, hit->p, hit->ng) : light->pdf_Li(ref, wi, {}, {});
     int n = light->sample_count(context.settings.light_samples);
-    return power_heuristic(bsdf_samples, bsdf_pdf, n, light_pdf);
+    return mis_weight(context, bsdf_samples, bsdf_pdf, n, light_pdf);
+}
+
+namespace reference {
+
+double power_heuristic(double nf, double f_pdf, double ng, double g_pdf) {
+    return pt::power_heuristic(nf, f_pdf, ng, g_pdf);
+}
+
+double balance_heuristic(double nf, double f_pdf, double ng, double g_pdf) {
+    return pt::balance_heuristic(nf, f_pdf, ng, g_pdf);
 }
 
 Color estimate_direct_lighting_mis(const RenderContext& context, const Ray& ray,
@@ -83,5 +101,7 @@ Color estimate_direct_lighting_mis(const RenderContext& context, const Ray& ray,
     }
     return L + sum / double(n_bsdf);
 }
+
+}  // namespace reference
 
 }  // namespace pt

@@ -124,6 +124,13 @@ EmittedPhoton emit_photon(const Light& light, double light_probability, uint64_t
 Color density_estimate(const std::vector<PhotonContribution>& found, double radius2, PhotonKernel kernel);
 }  // namespace reference
 
+namespace student {
+EmittedPhoton emit_photon(const Light& light, double light_probability, uint64_t count, Vec2 u_pos, Vec2 u_dir);
+KdTree build_kdtree(const std::vector<Vec3>& points);
+void k_nearest(const KdTree& tree, const Vec3& p, int k, double max_dist2, std::vector<Neighbor>& out);
+Color density_estimate(const std::vector<PhotonContribution>& found, double radius2, PhotonKernel kernel);
+}  // namespace student
+
 /// Which of a photon path's non-specular hits are stored.
 enum class PhotonPaths {
     caustic,   ///< the first non-specular hit after one or more specular bounces (L S+ D)

@@ -6,6 +6,8 @@
 // made from them) are the same at any thread count.
 #include <algorithm>
 #include <atomic>
+#include <exception>
+#include <mutex>
 #include <cmath>
 #include <optional>
 #include <thread>
@@ -72,10 +74,18 @@ std::vector<Photon> trace_photons(const RenderContext& context, const PhotonTrac
     const uint64_t chunks = (tracing.count + kChunk - 1) / kChunk;
     std::vector<std::vector<Photon>> stored(chunks);
     std::atomic<uint64_t> next{0};
+    std::mutex mutex;
+    std::exception_ptr failure;  // the first exception of any thread (a student stage's NotImplemented)
     auto worker = [&] {
-        for (uint64_t c = next++; c < chunks; c = next++) {
-            const uint64_t end = std::min(tracing.count, (c + 1) * kChunk);
-            for (uint64_t i = c * kChunk; i < end; ++i) trace_one(context, tracing, i, stored[c]);
+        try {
+            for (uint64_t c = next++; c < chunks; c = next++) {
+                const uint64_t end = std::min(tracing.count, (c + 1) * kChunk);
+                for (uint64_t i = c * kChunk; i < end; ++i) trace_one(context, tracing, i, stored[c]);
+            }
+        } catch (...) {
+            std::lock_guard<std::mutex> lock(mutex);
+            if (!failure) failure = std::current_exception();
+            next = chunks;
         }
     };
     std::vector<std::thread> pool;
@@ -83,6 +93,7 @@ std::vector<Photon> trace_photons(const RenderContext& context, const PhotonTrac
     for (int t = 1; t < count; ++t) pool.emplace_back(worker);
     worker();
     for (std::thread& t : pool) t.join();
+    if (failure) std::rethrow_exception(failure);
     size_t total = 0;
     for (const auto& s : stored) total += s.size();
     std::vector<Photon> photons;

@@ -19,6 +19,14 @@ const char* to_string(AdaptiveRule r) {
     return "?";
 }
 
+const char* to_string(MisHeuristic h) {
+    switch (h) {
+        case MisHeuristic::power: return "power";
+        case MisHeuristic::balance: return "balance";
+    }
+    return "?";
+}
+
 const char* to_string(IntegratorKind k) {
     switch (k) {
         case IntegratorKind::automatic: return "auto";

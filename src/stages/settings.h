@@ -16,6 +16,13 @@ enum class DirectStrategy {
     mis,         ///< light and BSDF samples combined by the power heuristic
 };
 
+/// How MIS weighs a sample against the other strategy (`--mis-heuristic`,
+/// Veach 1997, section 9.2): the power heuristic (exponent 2) or the balance heuristic.
+enum class MisHeuristic {
+    power,    ///< w_f = (nf pf)^2 / ((nf pf)^2 + (ng pg)^2): Veach's recommendation, the default
+    balance,  ///< w_f = nf pf / (nf pf + ng pg): provably never much worse than any other weights
+};
+
 /// Which integrator turns a camera ray into radiance (`--integrator`).
 enum class IntegratorKind {
     automatic,  ///< chosen from the scene's effects (DESIGN.md "Effects")
@@ -47,7 +54,7 @@ struct PhotonSettings {
     double radius = 0;
     int knn = 50;                       ///< --knn: photons per estimate (pm); 0 = fixed radius
     PhotonKernel kernel = PhotonKernel::epanechnikov;  ///< --photon-kernel
-    int passes = 16;                    ///< --passes (sppm)
+    int passes = 16;                    ///< --passes (sppm); 0: one per camera sample (-s)
     uint64_t photons_per_pass = 100000;  ///< --photons-per-pass (sppm)
     double alpha = 2.0 / 3.0;           ///< --alpha: fraction of new photons sppm keeps per pass
     PhotonView view = PhotonView::none;  ///< --photon-view
@@ -62,6 +69,7 @@ enum class AdaptiveRule {
 
 const char* to_string(DirectStrategy s);
 const char* to_string(AdaptiveRule r);
+const char* to_string(MisHeuristic h);
 const char* to_string(IntegratorKind k);
 const char* to_string(PhotonKernel k);
 const char* to_string(PhotonView v);
@@ -94,6 +102,7 @@ struct RenderSettings {
     /// calibrated with; the apps default to the best measured (options.cpp).
     SamplerKind sampler = SamplerKind::independent;
     DirectStrategy direct = DirectStrategy::light;  ///< --direct, -H
+    MisHeuristic mis_heuristic = MisHeuristic::power;  ///< --mis-heuristic (every MIS weight: --direct mis, path)
     IntegratorKind integrator = IntegratorKind::automatic;  ///< --integrator
     bool russian_roulette = true;     ///< --rr-depth off turns it off
     int rr_depth = 3;                 ///< --rr-depth N: paths of up to N bounces never meet roulette

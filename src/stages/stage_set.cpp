@@ -15,6 +15,7 @@ const char* to_string(Stage stage) {
         case Stage::global: return "global";
         case Stage::adaptive: return "adaptive";
         case Stage::sampler: return "sampler";
+        case Stage::photon: return "photon";
     }
     return "?";
 }
@@ -28,6 +29,7 @@ int part_of(Stage stage) {
         case Stage::global: return 4;
         case Stage::adaptive: return 5;
         case Stage::sampler: return 6;
+        case Stage::photon: return 8;
     }
     return 0;
 }
@@ -56,7 +58,7 @@ StageSet StageSet::parse(const std::string& list, const std::string& flag) {
         if (!found)
             throw InputError(flag + ": unknown stage '" + name +
                              "' (expected a comma-separated list of camera, intersect, bvh, direct, "
-                             "global, adaptive, sampler, or 'all' or 'none')");
+                             "global, adaptive, sampler, photon, or 'all' or 'none')");
     }
     if (set.empty()) throw InputError(flag + ": empty stage list (use 'none' for no student stages)");
     return set;

@@ -9,34 +9,34 @@
 
 namespace pt {
 
-enum class Stage : uint8_t { camera, intersect, bvh, direct, global, adaptive, sampler };
-constexpr int kStageCount = 7;
+enum class Stage : uint8_t { camera, intersect, bvh, direct, global, adaptive, sampler, photon };
+constexpr int kStageCount = 8;
 
 const char* to_string(Stage stage);
-/// The course part (1 to 6) a stage belongs to.
+/// The course part (1 to 6, 8) a stage belongs to.
 int part_of(Stage stage);
 
 class StageSet {
 public:
     StageSet() = default;
     static StageSet none() { return {}; }
-    static StageSet all() { return StageSet(uint8_t((1u << kStageCount) - 1)); }
-    /// The stages of course part `part` (1 to 6).
+    static StageSet all() { return StageSet(uint16_t((1u << kStageCount) - 1)); }
+    /// The stages of course part `part` (1 to 6, 8).
     static StageSet of_part(int part);
     /// Parses "camera,intersect", "all" or "none"; throws InputError naming `flag`.
     static StageSet parse(const std::string& list, const std::string& flag = "--student");
 
     bool contains(Stage s) const { return bits_ & bit(s); }
-    StageSet with(Stage s) const { return StageSet(bits_ | bit(s)); }
+    StageSet with(Stage s) const { return StageSet(uint16_t(bits_ | bit(s))); }
     bool empty() const { return bits_ == 0; }
     bool operator==(const StageSet& o) const { return bits_ == o.bits_; }
     /// "camera,intersect", or "none".
     std::string to_string() const;
 
 private:
-    explicit StageSet(uint8_t bits) : bits_(bits) {}
-    static uint8_t bit(Stage s) { return uint8_t(1u << unsigned(s)); }
-    uint8_t bits_ = 0;
+    explicit StageSet(uint16_t bits) : bits_(bits) {}
+    static uint16_t bit(Stage s) { return uint16_t(1u << unsigned(s)); }
+    uint16_t bits_ = 0;
 };
 
 }  // namespace pt

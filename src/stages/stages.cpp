@@ -46,14 +46,20 @@ Stages make_stages(StageSet student, TriangleTest triangle_test) {
                     student::zero_bounce_radiance,
                     student::estimate_direct_lighting_hemisphere,
                     student::estimate_direct_lighting_importance,
-                    student::one_bounce_radiance};
+                    student::one_bounce_radiance,
+                    student::power_heuristic,
+                    student::balance_heuristic,
+                    student::estimate_direct_lighting_mis};
     } else {
         s.direct = {reference::diffuse_f,
                     reference::diffuse_sample_f,
                     reference::zero_bounce_radiance,
                     reference::estimate_direct_lighting_hemisphere,
                     reference::estimate_direct_lighting_importance,
-                    reference::one_bounce_radiance};
+                    reference::one_bounce_radiance,
+                    reference::power_heuristic,
+                    reference::balance_heuristic,
+                    reference::estimate_direct_lighting_mis};
     }
     if (student.contains(Stage::global)) {
         s.global = {student::at_least_one_bounce_radiance,
@@ -67,7 +73,11 @@ Stages make_stages(StageSet student, TriangleTest triangle_test) {
     } else {
         s.sampler = {reference::stratified_sample_2d, reference::scrambled_radical_inverse};
     }
-    s.photon = {reference::emit_photon, reference::build_kdtree, reference::k_nearest, reference::density_estimate};
+    if (student.contains(Stage::photon)) {
+        s.photon = {student::emit_photon, student::build_kdtree, student::k_nearest, student::density_estimate};
+    } else {
+        s.photon = {reference::emit_photon, reference::build_kdtree, reference::k_nearest, reference::density_estimate};
+    }
     return s;
 }
 

@@ -203,7 +203,11 @@ TEST_CASE("effects: what the analysis reports and what auto picks") {
     CHECK(e.to_string() == "point_lights, hard_shadows, mirror, refraction");
     CHECK(choose_integrator(whitted, e, s, &why) == IntegratorKind::whitted);
     s.max_depth = 5;
-    CHECK(choose_integrator(whitted, analyze_effects(whitted, s), s, &why) == IntegratorKind::path);
+    // Point lights and glass over a floor: caustics only photon mapping carries.
+    CHECK(analyze_effects(whitted, s).point_light_caustics);
+    CHECK(analyze_effects(whitted, s).specular_diffuse_specular);
+    CHECK(choose_integrator(whitted, analyze_effects(whitted, s), s, &why) == IntegratorKind::sppm);
+    CHECK(why.find("photon mapping") != std::string::npos);
     // A student's global stage always runs in the path tracer.
     s.max_depth = 1;
     CHECK(choose_integrator(cbox(), analyze_effects(cbox(), s), s, &why,

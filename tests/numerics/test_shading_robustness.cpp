@@ -32,6 +32,21 @@ TEST_CASE("power heuristic with zero, infinite and NaN densities") {
     CHECK(power_heuristic(4, 1.0, 1, 1.0) == doctest::Approx(16.0 / 17.0));
 }
 
+TEST_CASE("balance heuristic with zero, infinite and NaN densities") {
+    CHECK(balance_heuristic(1, kInf, 1, 0.5) == 1.0);
+    CHECK(balance_heuristic(1, 0.5, 1, kInf) == 0.0);
+    CHECK(balance_heuristic(1, kInf, 1, kInf) == 0.5);
+    CHECK(balance_heuristic(1, 0.0, 1, 3.0) == 0.0);
+    CHECK(balance_heuristic(1, 0.0, 1, 0.0) == 0.0);
+    CHECK(balance_heuristic(1, kNaN, 1, 1.0) == 0.0);
+    CHECK(balance_heuristic(1, 1e300, 1, 1e300) == doctest::Approx(0.5));
+    CHECK(balance_heuristic(1, 1e-300, 1, 1e-300) == doctest::Approx(0.5));
+    CHECK(balance_heuristic(4, 1.0, 1, 1.0) == doctest::Approx(4.0 / 5.0));
+    // The two strategies' weights of one sample sum to 1 (unbiasedness, Veach eq. 9.12).
+    CHECK(balance_heuristic(3, 0.2, 2, 1.7) + balance_heuristic(2, 1.7, 3, 0.2) ==
+          doctest::Approx(1.0));
+}
+
 TEST_CASE("the diffuse BSDF at grazing angles and in the tangent plane stays finite") {
     const Color albedo(0.5, 0.6, 0.7);
     for (auto f : {reference::diffuse_f}) {

@@ -39,6 +39,11 @@ const std::vector<Technique>& all_techniques() {
          [](TechniqueConfig&) {}},
         {"mis", "MIS of light and BSDF samples at each vertex (--direct mis)", "light",
          [](TechniqueConfig& c) { c.settings.direct = DirectStrategy::mis; }},
+        {"mis-balance", "MIS weighted by the balance heuristic (--direct mis --mis-heuristic balance)", "mis",
+         [](TechniqueConfig& c) {
+             c.settings.direct = DirectStrategy::mis;
+             c.settings.mis_heuristic = MisHeuristic::balance;
+         }},
         {"adaptive", "adaptive sampling (-a, --adaptive split: unbiased), -s is the maximum", "light",
          [](TechniqueConfig& c) {
              c.settings.adaptive = true;
@@ -65,6 +70,15 @@ const std::vector<Technique>& all_techniques() {
         {"depth-6", "-m 6: at most 6 bounces", "light", cap_depth<6>, true},
         {"depth-7", "-m 7: at most 7 bounces", "light", cap_depth<7>, true},
         {"depth-8", "-m 8: at most 8 bounces", "light", cap_depth<8>, true},
+        {"path", "the path tracer (--integrator path), also where auto picks photon mapping", "light",
+         [](TechniqueConfig& c) { c.settings.integrator = IntegratorKind::path; }},
+        {"pm", "photon mapping (--integrator pm, 200000 + 200000 photons): biased, error floor", "path",
+         [](TechniqueConfig& c) { c.settings.integrator = IntegratorKind::pm; }},
+        {"sppm", "progressive photon mapping (--integrator sppm), one pass of 100000 photons per spp", "path",
+         [](TechniqueConfig& c) {
+             c.settings.integrator = IntegratorKind::sppm;
+             c.settings.photon.passes = 0;
+         }},
         {"sampler-independent", "--sampler independent: PCG32 per (seed, pixel, sample)", "light",
          use_sampler<SamplerKind::independent>, false, -1, -1},
         {"sampler-stratified", "--sampler stratified: jittered strata per pixel and dimension", "light",

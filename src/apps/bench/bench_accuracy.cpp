@@ -42,11 +42,13 @@ const char* const kHelp = R"(bench accuracy: what accuracy costs in time, for on
   --equal-time S      also render every technique for about S seconds and
                       write the images side by side with their error
                       (alone, without --budget: only the equal-time renders)
-  --techniques LIST   all, or some of: hemisphere, light, mis, adaptive,
-                      adaptive-cs184, adaptive-noguard, linear-scan,
+  --techniques LIST   all, or some of: hemisphere, light, mis, mis-balance,
+                      adaptive, adaptive-cs184, adaptive-noguard, linear-scan,
                       sampler-independent ... sampler-zsobol (or samplers
-                      for all five), and for the path tracer (-m 2 or
-                      more) rr-off, depth-1 ... depth-8 [all]
+                      for all five), path, pm, sppm (photon mapping: give
+                      -m 100000 to compare with the uncapped path tracer),
+                      and for the path tracer (-m 2 or more) rr-off,
+                      depth-1 ... depth-8 [all]
   -r W H              resolution        [the scene's film, longer side 256]
   -t N                threads                    [all hardware threads]
   -l N, -m N          samples per area light, maximum depth   [1, 1]

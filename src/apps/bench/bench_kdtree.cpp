@@ -1,0 +1,98 @@
+// bench kdtree: the photon maps' kd-tree (stages/kdtree.h) against a
+// brute-force scan. For N uniform random points in the unit cube: the
+// build time, 50-nearest queries per second (tree and scan), fixed-radius
+// queries per second, and the bytes per point; one thread, CPU time of the
+// calling thread (robust when other processes share the machine).
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <string>
+#include <vector>
+
+#include "apps/bench/bench_command.h"
+#include "apps/number_flags.h"
+#include "core/error.h"
+#include "core/rng.h"
+#include "stages/kdtree.h"
+#include "stages/photon.h"
+
+namespace pt::bench {
+namespace {
+
+const char* kUsage = "kdtree [--points N] [--k K] [--queries Q]";
+
+double thread_seconds() {
+    timespec t{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
+
+int run_kdtree(const std::vector<std::string>& args) {
+    long long points = 1000000, k = 50, queries = 200000;
+    for (size_t i = 0; i < args.size(); ++i) {
+        if (args[i] == "--points" && i + 1 < args.size()) points = parse_whole_number("--points", args[++i], 1, 1ll << 28);
+        else if (args[i] == "--k" && i + 1 < args.size()) k = parse_whole_number("--k", args[++i], 1, 1 << 16);
+        else if (args[i] == "--queries" && i + 1 < args.size()) queries = parse_whole_number("--queries", args[++i], 1, 1ll << 30);
+        else throw InputError("bench kdtree: unexpected argument '" + args[i] + "' (usage: bench " + kUsage + ")");
+    }
+    Rng rng(1);
+    std::vector<Vec3> cloud(static_cast<size_t>(points));
+    for (Vec3& p : cloud) p = {rng.next_1d(), rng.next_1d(), rng.next_1d()};
+    std::vector<Vec3> at(static_cast<size_t>(queries));
+    for (Vec3& p : at) p = {rng.next_1d(), rng.next_1d(), rng.next_1d()};
+
+    double t0 = thread_seconds();
+    KdTree tree = reference::build_kdtree(cloud);
+    const double build = thread_seconds() - t0;
+
+    std::vector<Neighbor> found;
+    double checksum = 0;
+    t0 = thread_seconds();
+    for (const Vec3& p : at) {
+        reference::k_nearest(tree, p, int(k), 1e300, found);
+        checksum += found.back().dist2;
+    }
+    const double knn = (thread_seconds() - t0) / double(queries);
+
+    // The radius that holds k points on average: (4/3) pi r^3 N = k.
+    const double r = std::cbrt(3.0 * double(k) / (4.0 * 3.14159265358979 * double(points)));
+    t0 = thread_seconds();
+    size_t in_radius = 0;
+    for (const Vec3& p : at) {
+        within_radius(tree, p, r * r, found);
+        in_radius += found.size();
+    }
+    const double radius = (thread_seconds() - t0) / double(queries);
+
+    // Brute force on a few queries (it is slow): the distance of the k-th nearest by partial sort.
+    const long long brute_queries = std::max(1ll, std::min(queries, 20000000ll / points));
+    t0 = thread_seconds();
+    std::vector<double> d2(cloud.size());
+    for (long long q = 0; q < brute_queries; ++q) {
+        for (size_t i = 0; i < cloud.size(); ++i) d2[i] = (cloud[i] - at[size_t(q)]).norm2();
+        std::nth_element(d2.begin(), d2.begin() + (std::min<long long>(k, points) - 1), d2.end());
+        checksum += d2[size_t(std::min<long long>(k, points) - 1)];
+    }
+    const double brute = (thread_seconds() - t0) / double(brute_queries);
+
+    std::printf("kd-tree over %lld uniform points in the unit cube, one thread, CPU seconds (checksum %.3g)\n\n", points,
+                checksum);
+    std::printf("| what | measured |\n|---|---|\n");
+    std::printf("| build | %.3f s (%.0f ns per point) |\n", build, 1e9 * build / double(points));
+    std::printf("| %lld-nearest query, kd-tree | %.2f us, %.0f queries/s |\n", k, 1e6 * knn, 1.0 / knn);
+    std::printf("| %lld-nearest query, brute-force scan (%lld queries) | %.0f us, %.0f queries/s (kd-tree %.0f times as fast) |\n",
+                k, brute_queries, 1e6 * brute, 1.0 / brute, brute / knn);
+    std::printf("| fixed-radius query, r = %.4f (mean %.1f points found) | %.2f us, %.0f queries/s |\n", r,
+                double(in_radius) / double(queries), 1e6 * radius, 1.0 / radius);
+    std::printf("| memory | %.1f bytes per point (a photon adds %zu) |\n", double(tree.bytes()) / double(points),
+                sizeof(Photon));
+    return 0;
+}
+
+const BenchCommandRegistration kRegistration({"kdtree", kUsage,
+                                              "kd-tree build and k-nearest / fixed-radius query costs against a brute-force scan",
+                                              run_kdtree});
+
+}  // namespace
+}  // namespace pt::bench
