@@ -116,7 +116,7 @@ double mrays(const RayCounters& c, double seconds) {
 /// Builds `make()`'s accelerator, timing it.
 template <class Make>
 std::unique_ptr<Accelerator> timed_build(Make make, double* seconds) {
-    Timer timer;
+    CpuTimer timer;  // one thread: its CPU time, robust to other processes
     std::unique_ptr<Accelerator> a = make();
     *seconds = timer.seconds();
     return a;
@@ -228,7 +228,7 @@ SceneResult measure_scene(const std::string& path, const BvhOptions& o) {
 
     std::cerr << "bench bvh: " << r.name << ": building the BVH\n";
     AcceleratorSettings bvh_settings;
-    Timer timer;
+    CpuTimer timer;  // the build's CPU time (one thread), robust to other processes
     std::unique_ptr<Accelerator> bvh = build_accelerator(scene, stages, bvh_settings);
     r.build_seconds = timer.seconds();
     r.info = bvh->info();
