@@ -42,9 +42,12 @@ Color estimate_direct_lighting_hemisphere(const RenderContext& context, const Ra
     // directions (return black if N is 0: no light can be hit) wi =
     // sample_uniform_hemisphere(rng.next_2d()) (local frame, pdf =
     // uniform_hemisphere_pdf()). For each, trace isect.spawn_ray of its
-    // world direction; the light arriving is zero_bounce_radiance of what it
-    // hits, or context.lights.environment_radiance on a miss. Return
-    // 1/N sum f(wo, wi) Li cos(theta) / pdf.
+    // world direction; the light arriving is the emission of what it hits,
+    // context.stages.direct.zero_bounce_radiance(context, bounce, *hit)
+    // (through the stage table, as Part 4 calls it, so that your estimator
+    // is graded with the reference's emission and a bug in task 3.3 costs
+    // task 3.3 alone), or context.lights.environment_radiance on a miss.
+    // Return 1/N sum f(wo, wi) Li cos(theta) / pdf.
     (void)context, (void)ray, (void)isect, (void)rng;
     throw NotImplemented(3, "4", "estimate_direct_lighting_hemisphere");
 }

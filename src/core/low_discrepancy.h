@@ -90,16 +90,46 @@ inline uint64_t sobol_dimension1(uint64_t a) {
     return v;
 }
 
-/// Owen scrambling of a 32-bit binary fraction (bit 31 the first digit) by
-/// hashing in bit-reversed order: uniform for a random seed, and nested.
-inline uint32_t owen_scramble(uint32_t v, uint32_t seed) {
-    uint32_t x = reverse_bits_32(v);
+/// The nested scramble in bit-reversed order (the first digit in bit 0),
+/// the core of owen_scramble.
+inline uint32_t laine_karras(uint32_t x, uint32_t seed) {
     x += seed;
     x ^= x * 0x6C50B47Cu;
     x ^= x * 0xB82F1E52u;
     x ^= x * 0xC7AFE638u;
     x ^= x * 0x8D22F6E6u;
-    return reverse_bits_32(x);
+    return x;
+}
+/// Owen scrambling of a 32-bit binary fraction (bit 31 the first digit) by
+/// hashing in bit-reversed order: uniform for a random seed, and nested.
+inline uint32_t owen_scramble(uint32_t v, uint32_t seed) {
+    return reverse_bits_32(laine_karras(reverse_bits_32(v), seed));
+}
+
+/// owen_scramble of the first 32 digits of Sobol dimension 0 and 1 of index
+/// a, without the two bit reversals that cancel: dimension 0's
+/// digits are a's bits reversed, so its reversed digits are a itself; for
+/// dimension 1 the byte tables hold the reversed digits directly.
+struct SobolDimension1ReversedBytes {
+    std::array<std::array<uint32_t, 256>, 8> table{};
+    constexpr SobolDimension1ReversedBytes() {
+        for (int k = 0; k < 8; ++k)
+            for (int b = 0; b < 256; ++b) {
+                uint32_t v = uint32_t(kSobolDimension1Bytes.table[size_t(k)][size_t(b)] >> 32), r = 0;
+                for (int j = 0; j < 32; ++j) r |= ((v >> j) & 1u) << (31 - j);
+                table[size_t(k)][size_t(b)] = r;
+            }
+    }
+};
+inline constexpr SobolDimension1ReversedBytes kSobolDimension1ReversedBytes{};
+
+inline uint32_t scrambled_sobol_dimension0(uint64_t a, uint32_t seed) {
+    return reverse_bits_32(laine_karras(uint32_t(a), seed));
+}
+inline uint32_t scrambled_sobol_dimension1(uint64_t a, uint32_t seed) {
+    uint32_t reversed = 0;
+    for (size_t k = 0; a != 0; ++k, a >>= 8) reversed ^= kSobolDimension1ReversedBytes.table[k][a & 0xFF];
+    return reverse_bits_32(laine_karras(reversed, seed));
 }
 
 /// A 32-bit binary fraction as a double in [0, 1).

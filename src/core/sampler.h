@@ -132,6 +132,7 @@ private:
     SamplerSettings settings_;
     SamplerFunctions functions_;
     int strata_x_ = 1, strata_y_ = 1;
+    uint64_t id_ = 0;  ///< unique per sampler of the process: zsobol's per-thread cache knows whose digits it holds
     std::unique_ptr<Tables> tables_;
 };
 

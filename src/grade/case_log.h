@@ -33,10 +33,26 @@ class CaseLog {
     /// mismatches and per-category counts in details. `against` names what
     /// the answers were compared with, for the message ("agrees with the
     /// reference on ...", "... disagree with brute force").
+    ///
+    /// Points by case family: when the task's params have "families", a
+    /// list of {"name", "points", "categories": [category names]} that
+    /// covers every category once and whose points add up to the task's,
+    /// each family passes on its own (at most max_mismatches outside the
+    /// edge band), the task passes when all do, and a failing task earns
+    /// the points of the families that pass (TaskResult::family_points),
+    /// its message naming each lost family and its first mismatch.
+    /// InputError for a family list that does not fit the categories.
     TaskResult finish(const TaskSpec& spec, int max_mismatches,
                       const std::string& against = "the reference") const;
 
   private:
+    struct Family {
+        std::string name;
+        double points = 0;
+        std::vector<size_t> categories;  ///< indices into categories_
+    };
+    /// The manifest's "families" checked against the logged categories.
+    std::vector<Family> families(const TaskSpec& spec) const;
     struct Category {
         std::string name;
         int cases = 0, mismatches = 0, allowed = 0;

@@ -1,5 +1,6 @@
 #include "grade/grader.h"
 
+#include <algorithm>
 #include <cmath>
 #include <ctime>
 
@@ -63,7 +64,8 @@ TaskResult grade_task(const TaskSpec& spec, const GradeEnvironment& env) {
     r.check = spec.check;
     r.type = spec.type;
     r.max_points = spec.points;
-    r.points = r.status == TaskStatus::pass ? spec.points : 0;
+    r.points = r.status == TaskStatus::pass ? spec.points
+                                            : std::min(std::max(r.family_points, 0.0), spec.points);
     r.seconds = timer.seconds();
     return r;
 }

@@ -85,7 +85,7 @@ PartManifest read_manifest(const std::string& path, int expected_part) {
         throw InputError(path + ": not valid JSON: " + e.what());
     }
     if (!j.is_object()) throw InputError(path + ": expected a JSON object");
-    reject_unknown_keys(j, {"part", "title", "tasks", "comment"}, path);
+    reject_unknown_keys(j, {"part", "title", "tasks", "comment", "coverage_exclusions"}, path);
     PartManifest m;
     m.path = path;
     m.part = require(j, "part", json::value_t::number_unsigned, path).get<int>();

@@ -12,6 +12,14 @@
 // machine is a second, generous limit (the fastest of `repeats` runs; the
 // linear scan is timed on the first `linear_rays` rays only, since it is
 // slow, and compared per ray).
+//
+// Tree quality (tree_quality.h) judges the student's construct_bvh by its
+// shape, which a tree that is fast on the test rays, or does few primitive
+// tests per ray, cannot fake: its SAH cost and the nodes a fixed traversal
+// visits per incoherent ray, both relative to the reference tree over the
+// same primitives, and its depth relative to log2(n). A tree that splits
+// one primitive off per level passes the primitive-test limit; its depth
+// (n / 4) and its nodes per ray fail it.
 #include <algorithm>
 #include <cmath>
 
@@ -22,6 +30,7 @@
 #include "grade/params.h"
 #include "grade/performance_checks.h"
 #include "grade/random_inputs.h"
+#include "grade/tree_quality.h"
 
 namespace pt {
 
@@ -88,7 +97,43 @@ TaskResult check_bvh_performance(const TaskSpec& spec, const GradeEnvironment& e
     r.details.push_back("the tree: " + std::to_string(info.nodes) + " nodes, depth " +
                         std::to_string(info.depth) + ", leaves of at most " +
                         std::to_string(settings.max_leaf) + " primitives where a split exists");
+
+    // The tree's shape against the reference construct_bvh's.
+    const size_t leaf = size_t(settings.max_leaf);
+    std::unique_ptr<BVHTree> mine =
+        build_tree(scene, env.reference.intersect, env.student.bvh.tree.construct_bvh, leaf);
+    std::unique_ptr<BVHTree> theirs =
+        build_tree(scene, env.reference.intersect, env.reference.bvh.tree.construct_bvh, leaf);
+    std::vector<Ray> incoherent =
+        theirs->root ? incoherent_rays(theirs->root->bb, param(spec, "quality_rays", 1000), rng)
+                     : std::vector<Ray>{};
+    const TreeQuality qs = measure_tree_quality(*mine, incoherent);
+    const TreeQuality qr = measure_tree_quality(*theirs, incoherent);
+    const double log2n = std::log2(std::max(2.0, double(scene.primitive_count())));
+    const double sah_ratio = qs.sah_cost / std::max(qr.sah_cost, 1e-300);
+    const double depth_ratio = qs.depth / log2n;
+    const double visited_ratio = qs.nodes_per_ray / std::max(qr.nodes_per_ray, 1e-300);
+    char quality[400];
+    std::snprintf(quality, sizeof quality,
+                  "tree quality: SAH cost %.4g (%.3g x the reference tree's %.4g), depth %d "
+                  "(%.3g x log2 n = %.3g), %.4g nodes visited per incoherent ray (%.3g x the "
+                  "reference tree's %.4g)",
+                  qs.sah_cost, sah_ratio, qr.sah_cost, qs.depth, depth_ratio, log2n,
+                  qs.nodes_per_ray, visited_ratio, qr.nodes_per_ray);
+    r.details.push_back(quality);
     std::vector<std::string> failures;
+    const double max_sah = param(spec, "max_sah_ratio", INFINITY);
+    const double max_depth = param(spec, "max_depth_ratio", INFINITY);
+    const double max_visited = param(spec, "max_visited_ratio", INFINITY);
+    if (!(sah_ratio <= max_sah))
+        failures.push_back("SAH cost " + format_num(sah_ratio) + " x the reference tree's > " +
+                           format_num(max_sah));
+    if (!(depth_ratio <= max_depth))
+        failures.push_back("depth " + std::to_string(qs.depth) + " = " + format_num(depth_ratio) +
+                           " x log2 n > " + format_num(max_depth));
+    if (!(visited_ratio <= max_visited))
+        failures.push_back("nodes visited per incoherent ray " + format_num(visited_ratio) +
+                           " x the reference tree's > " + format_num(max_visited));
     if (!(s.tests_per_ray <= max_tests))
         failures.push_back("primitive tests per ray " + format_num(s.tests_per_ray) + " > " +
                            format_num(max_tests));
@@ -101,7 +146,7 @@ TaskResult check_bvh_performance(const TaskSpec& spec, const GradeEnvironment& e
     std::string joined;
     for (const std::string& f : failures)
         joined += (joined.empty() ? "" : "; ") + f;
-    r.message = (failures.empty() ? std::string("") : joined + ": ") + line;
+    r.message = (failures.empty() ? std::string("") : joined + ": ") + line + "; " + quality;
     return r;
 }
 

@@ -6,6 +6,14 @@
 // box, tiny, huge and far boxes, and direction components of 1e-300 and
 // 1e-320 (whose inverse overflows).
 //
+// The exact family: small integer boxes (often flat, min = max on an axis),
+// origins on whole and half units (often exactly on a face) and direction
+// components of 0, -0.0 and powers of two, so that every (min - o) / d is
+// exact in double. There entry = exit is a real answer (a flat box crossed
+// head-on, a ray touching an edge or starting on a face: the box is
+// closed, so these hit), never the edge band: `entry < exit` instead of
+// `entry <= exit` loses exactly this family.
+//
 // The exact answer: per axis the ray is inside the closed slab between
 // (min - o) / d and (max - o) / d, computed in long double; an axis with
 // d = 0 constrains nothing when min <= o <= max (the ray runs inside the
@@ -98,13 +106,15 @@ std::string describe(const SlabInput& in) {
            format_num(in.ray.t_min) + ", " + format_num(in.ray.t_max) + "]";
 }
 
+/// `exact`: every slab parameter of the input is exact in double, so no
+/// verdict lies in the edge band.
 void check_one(const SlabInput& in, BboxIntersectFn student, double rel_tol, double edge_band,
-               CaseLog& log) {
+               CaseLog& log, bool exact = false) {
     double t0 = in.ray.t_min, t1 = in.ray.t_max;
     const bool hit = student(in.box, in.ray, t0, t1);
     const SlabTruth truth = slab_truth(in.box, in.ray, in.ray.t_min, in.ray.t_max, edge_band);
     const long double gap = truth.exit - truth.entry;
-    const bool in_band = fabsl(gap) <= truth.width;
+    const bool in_band = !exact && fabsl(gap) <= truth.width;
     if (hit && (std::isnan(t0) || std::isnan(t1) || t0 > t1)) {
         log.mismatch(describe(in) + ": says hit with the interval [" + format_num(t0) + ", " +
                      format_num(t1) + "]");
@@ -137,6 +147,55 @@ void check_one(const SlabInput& in, BboxIntersectFn student, double rel_tol, dou
     }
 }
 
+/// A slab input whose answer involves no rounding (see the header): box
+/// corners on whole units, flat on one or two axes in most cases, origins
+/// on half units or on a face, direction components 0, -0.0 or +-2^k, and
+/// [t0, t1] = [0, inf], pinned to the exact entry or exit, or ending 1/64
+/// before the entry (dyadic, so still exact).
+SlabInput exact_slab_input(Rng& rng, int i) {
+    auto whole = [&](int lo, int hi) { return double(lo + int(rng.next_index(hi - lo + 1))); };
+    Vec3 lo, hi;
+    for (int a = 0; a < 3; ++a) {
+        lo[a] = whole(-4, 3);
+        hi[a] = lo[a] + (i % 3 == a || (i % 5 == 0 && (i + 1) % 3 == a) ? 0 : whole(0, 3));
+    }
+    BBox box(lo, hi);
+    Vec3 o;
+    for (int a = 0; a < 3; ++a)
+        o[a] = whole(-12, 12) / 2;
+    if (i % 2 == 1) {  // on a face (or an edge or a corner) of the box
+        int a = int(rng.next_index(3));
+        o[a] = rng.next_1d() < 0.5 ? lo[a] : hi[a];
+    }
+    Vec3 d;
+    const double powers[] = {0.25, 0.5, 1, 2, 4};
+    for (int a = 0; a < 3; ++a) {
+        if (rng.next_1d() < 0.3) {
+            d[a] = signed_zero(rng);
+            continue;
+        }
+        double towards_box = 0.5 * (lo[a] + hi[a]) - o[a];
+        double sign = rng.next_1d() < 0.8 ? (towards_box < 0 ? -1 : 1) : (rng.next_1d() < 0.5 ? -1 : 1);
+        d[a] = sign * powers[rng.next_index(5)];
+    }
+    if (d == Vec3(0)) d[i % 3] = 1;
+    double t0 = 0, t1 = INFINITY;
+    SlabTruth t = slab_truth(box, Ray(o, d), 0, INFINITY, 0);
+    if (t.hit) {
+        switch (i % 6) {
+            case 1: t1 = double(t.entry); break;            // ends exactly at the entry: a hit
+            case 2: t0 = double(t.exit); break;             // starts exactly at the exit: a hit
+            case 3: t0 = t1 = double(t.entry); break;       // one point, the entry
+            case 4:  // ends 1/64 before the entry: a miss (robust tests widen t1 by ulps, not this)
+                t0 = std::min(0.0, double(t.entry) - 1.0);
+                t1 = double(t.entry) - 1.0 / 64;
+                break;
+            default: break;
+        }
+    }
+    return {box, Ray(o, d, t0, t1)};
+}
+
 }  // namespace
 
 TaskResult check_bbox_intersect(const TaskSpec& spec, const GradeEnvironment& env) {
@@ -149,6 +208,9 @@ TaskResult check_bbox_intersect(const TaskSpec& spec, const GradeEnvironment& en
     auto run = [&](const BBox& box, const Vec3& o, const Vec3& d, double t0 = 0,
                    double t1 = INFINITY) {
         check_one({box, Ray(o, d, t0, t1)}, student, rel_tol, band, log);
+    };
+    auto run_exact = [&](const SlabInput& in) {
+        check_one(in, student, rel_tol, band, log, true);
     };
 
     log.category("random rays");
@@ -266,19 +328,28 @@ TaskResult check_bbox_intersect(const TaskSpec& spec, const GradeEnvironment& en
         }
     }
 
-    log.category("tiny, huge and far boxes; direction components of 1e-300 and 1e-320");
     for (int i = 0; i < n / 4; ++i) {
         const double scales[] = {1e-6, 1e6};
         BBox box = random_box(rng, scales[i % 2]);
         if (i % 3 == 0) box = BBox(box.min + Vec3(1e6), box.max + Vec3(1e6));
         Vec3 o = point_around(box, rng);
         Vec3 d = towards(o, point_in(box, rng), rng);
+        log.category("tiny, huge and far boxes");
         if (i % 4 == 1) {
+            // 1e-320 is subnormal: 1 / d overflows to inf, so a slab test
+            // that multiplies by a precomputed 1 / d (pbrt-v3's
+            // Bounds3::IntersectP) gets 0 * inf = NaN or a wrong side here.
+            log.category("direction components of 1e-300 and 1e-320 (1 / d overflows)");
             int a = int(rng.next_index(3));
             d[a] = std::copysign(i % 8 == 1 ? 1e-300 : 1e-320, rng.next_1d() - 0.5);
             if (rng.next_1d() < 0.5) o[a] = rng.next_1d() < 0.5 ? box.min[a] : box.max[a];
         }
         run(box, o, d);
+    }
+
+    log.category("exact answers: flat boxes, touching rays, origins on faces");
+    for (int i = 0; i < n / 2; ++i) {
+        run_exact(exact_slab_input(rng, i));
     }
     return log.finish(spec, param(spec, "max_mismatches", 0), "the exact answer");
 }

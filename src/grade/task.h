@@ -65,6 +65,9 @@ struct TaskResult {
     std::vector<std::string> details;     ///< further lines: per-category counts, first mismatches
     std::vector<ImageCaseResult> images;  ///< image tasks: one per rendered case
     double seconds = 0;                   ///< time spent grading the task
+    /// Points earned when the task fails but some of its case families
+    /// (the manifest's "families") pass; 0 otherwise (case_log.h).
+    double family_points = 0;
 };
 
 }  // namespace pt

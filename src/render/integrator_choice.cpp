@@ -29,6 +29,9 @@ IntegratorKind choose_integrator(const Scene& scene, const Effects& effects,
         if (reason) *reason = why;
         return kind;
     };
+    if (settings.integrator == IntegratorKind::pm && student.contains(Stage::photon) &&
+        !student.contains(Stage::global))
+        return because(IntegratorKind::pm, "photon is a student stage: photon mapping runs it");
     if (settings.integrator != IntegratorKind::automatic)
         return because(settings.integrator, "chosen with --integrator");
     if (!scene.has_lights())

@@ -23,6 +23,8 @@ enum class Bug {
     roulette_without_q,  ///< survives with q but does not divide by it: too dark
     weight_without_cos,  ///< weight = f / pdf: |cos theta_i| forgotten
     weight_without_pdf,  ///< weight = f |cos theta_i|: the division by the pdf forgotten
+    delta_light_skipped,     ///< step 6 left out: nothing seen through a mirror or glass
+    delta_light_uncounted,   ///< step 6 without "counted": light after a delta bounce with -o 0 too
 };
 
 template <Bug bug>
@@ -52,7 +54,10 @@ Color bounce(const RenderContext& context, const Ray& ray, const SurfaceInteract
     }
     Ray next = isect.spawn_ray(bsdf.to_world(bs.wi));
     std::optional<SurfaceInteraction> hit = context.intersect(next);
-    if (bs.is_delta && counted)
+    const bool step6 = bug == Bug::delta_light_uncounted ? bs.is_delta
+                       : bug == Bug::delta_light_skipped ? false
+                                                          : bs.is_delta && counted;
+    if (step6)
         L += weight * (hit ? context.stages.direct.zero_bounce_radiance(context, next, *hit)
                            : context.lights.environment_radiance(next.d));
     if (hit && bounces < m)
@@ -64,6 +69,8 @@ enum class CameraBug {
     none,
     emission_always,      ///< zero-bounce light added whatever -o
     emission_only_at_m0,  ///< zero-bounce light only with -m 0: lost with -o 1
+    sky_forgotten,        ///< a camera ray that misses is black, also with -o 1
+    sky_always,           ///< a camera ray that misses sees the sky, also with -o 0
 };
 
 template <CameraBug bug>
@@ -73,7 +80,11 @@ Color camera_ray(const RenderContext& context, const Ray& ray, Rng& rng) {
     if (bug == CameraBug::emission_always) zero = true;
     if (bug == CameraBug::emission_only_at_m0) zero = settings.max_depth == 0;
     std::optional<SurfaceInteraction> isect = context.intersect(ray);
-    if (!isect) return zero ? context.lights.environment_radiance(ray.d) : Color(0);
+    if (!isect) {
+        if (bug == CameraBug::sky_forgotten) return Color(0);
+        if (bug == CameraBug::sky_always) return context.lights.environment_radiance(ray.d);
+        return zero ? context.lights.environment_radiance(ray.d) : Color(0);
+    }
     Color L;
     if (zero) L += context.stages.direct.zero_bounce_radiance(context, ray, *isect);
     if (settings.max_depth >= 1)

@@ -6,6 +6,8 @@
 // tasks are measured, PT_CALIBRATION_STUDENT=textbook to grade CS184's
 // has_converged (no rare-event guard) instead of the reference,
 // PT_CALIBRATION_TASKS=part3.5,... to measure only these tasks,
+// PT_CALIBRATION_CASES='sky|every kind' only the cases whose label contains
+// one of these (a task with none keeps all its cases),
 // PT_CALIBRATION_ALPHA and PT_CALIBRATION_BIAS_SPP to try other rules.
 // It prints, per image case, the distribution of the two statistics of the
 // noise rule (error ratio and worst tile |z|) for the reference graded as a
@@ -48,6 +50,19 @@ double parse_figure(const std::string& text, const std::string& after) {
 /// A task with PT_CALIBRATION_ALPHA and PT_CALIBRATION_BIAS_SPP applied.
 TaskSpec calibrated(TaskSpec t) {
     if (t.type != TaskType::image) return t;
+    if (const char* only = std::getenv("PT_CALIBRATION_CASES")) {  // label substrings, '|'-separated
+        nlohmann::json kept = nlohmann::json::array();
+        std::string list = std::string("|") + only + "|";
+        for (const auto& c : t.params["cases"]) {
+            const std::string label = c.value("label", std::string());
+            for (size_t a = 0, b; (b = list.find('|', a + 1)) != std::string::npos; a = b)
+                if (b > a + 1 && label.find(list.substr(a + 1, b - a - 1)) != std::string::npos) {
+                    kept.push_back(c);
+                    break;
+                }
+        }
+        if (!kept.empty()) t.params["cases"] = kept;
+    }
     if (const char* a = std::getenv("PT_CALIBRATION_ALPHA")) t.params["alpha"] = std::atof(a);
     if (const char* b = std::getenv("PT_CALIBRATION_BIAS_SPP"))
         for (auto& c : t.params["cases"])

@@ -111,3 +111,18 @@ TEST_CASE("a path tracer written from the TODO steps (recursive) passes every Pa
         }
     }
 }
+
+TEST_CASE("the hidden set's correct solutions written differently pass every task of their part") {
+    for (int part : graded_parts()) {
+        for (const fixtures::Fixture& f : fixtures::hidden_set_alternatives(part)) {
+            Stages student = fixtures::stages_with(f);
+            for (uint64_t seed = 1; seed <= 2; ++seed) {
+                GradeReport report = grade_all({manifest(part)}, environment(student, seed));
+                for (const TaskResult& t : report.tasks) {
+                    INFO(f.name << ", seed " << seed << ", " << t.id << ": " << t.message);
+                    CHECK(t.status == TaskStatus::pass);
+                }
+            }
+        }
+    }
+}

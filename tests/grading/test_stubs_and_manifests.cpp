@@ -321,6 +321,34 @@ TEST_CASE("bad task parameters are the grader's error (InputError), not the stud
     CHECK_THROWS_AS(grade_task(m.tasks[0], environment(reference_stages(), 1)), InputError);
 }
 
+TEST_CASE("case families that do not fit the check's categories are the grader's error") {
+    // Part 2's slab task with its families, broken three ways.
+    TaskSpec good;
+    for (const TaskSpec& t : manifest(2).tasks)
+        if (t.id == "part2.2") good = t;
+    REQUIRE(good.params.contains("families"));
+    good.params["cases"] = 40;
+    auto message = [&](const TaskSpec& t) {
+        try {
+            grade_task(t, environment(reference_stages(), 1));
+        } catch (const InputError& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    TaskSpec missing = good;
+    missing.params["families"].erase(missing.params["families"].size() - 1);
+    missing.points -= 2;
+    CHECK(message(missing).find("is in no family") != std::string::npos);
+    TaskSpec points = good;
+    points.params["families"][0]["points"] = 1;
+    CHECK(message(points).find("add up to 10, not the task's 20") != std::string::npos);
+    TaskSpec unknown = good;
+    unknown.params["families"][0]["categories"].push_back("no such category");
+    CHECK(message(unknown).find("no case category \"no such category\"") != std::string::npos);
+    CHECK(message(good) == "no error");
+}
+
 TEST_CASE("isolated tasks: a crash or an endless loop fails only its task") {
     Stages s = reference_stages();
     // Both without undefined behaviour, so that they do the same under the

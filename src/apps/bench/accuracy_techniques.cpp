@@ -75,10 +75,7 @@ const std::vector<Technique>& all_techniques() {
         {"pm", "photon mapping (--integrator pm, 200000 + 200000 photons): biased, error floor", "path",
          [](TechniqueConfig& c) { c.settings.integrator = IntegratorKind::pm; }},
         {"sppm", "progressive photon mapping (--integrator sppm), one pass of 100000 photons per spp", "path",
-         [](TechniqueConfig& c) {
-             c.settings.integrator = IntegratorKind::sppm;
-             c.settings.photon.passes = 0;
-         }},
+         [](TechniqueConfig& c) { c.settings.integrator = IntegratorKind::sppm; }},
         {"sampler-independent", "--sampler independent: PCG32 per (seed, pixel, sample)", "light",
          use_sampler<SamplerKind::independent>, false, -1, -1},
         {"sampler-stratified", "--sampler stratified: jittered strata per pixel and dimension", "light",

@@ -116,6 +116,9 @@ AccuracyOptions parse_accuracy_options(const Args& a) {
     o.threads = a.get_int("-t", int(std::max(1u, std::thread::hardware_concurrency())), 1, 4096);
     o.baseline.light_samples = a.get_int("-l", 1, 1, 1 << 20);
     o.baseline.max_depth = a.get_int("-m", 1, 0, 100000);
+    // SPPM (the baseline `auto` picks for point-light caustics, and the
+    // reference then) runs one pass per spp, so that doubling spp doubles its work.
+    o.baseline.photon.passes = 0;
     if (a.has("-a")) {
         o.baseline.samples_per_batch =
             parse_int("accuracy: -a (samples per batch)", a.values("-a")[0], 1, 1 << 20);
