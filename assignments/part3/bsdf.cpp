@@ -13,19 +13,25 @@
 namespace pt::student {
 
 Color diffuse_f(const Color& albedo, const Vec3& wo, const Vec3& wi) {
-    // TODO(part3.1): return the Lambertian BSDF value albedo / pi (kInvPi is
+    // TODO(part3.1): diffuse_f, as src/stages/direct.h states its contract.
+    // [guided]
+    // return the Lambertian BSDF value albedo / pi (kInvPi is
     // in core/math.h) when wi is in the upper hemisphere (wi.z > 0), and
     // black (Color(0)) below it. A diffuse surface does not care about wo.
+    // [/guided]
     (void)albedo, (void)wo, (void)wi;
     throw NotImplemented(3, "1", "diffuse_f");
 }
 
 BSDFSample diffuse_sample_f(const Color& albedo, const Vec3& wo, Vec2 u) {
-    // TODO(part3.2): draw wi cosine-weighted on the upper hemisphere from u
+    // TODO(part3.2): diffuse_sample_f, as src/stages/direct.h states its contract.
+    // [guided]
+    // draw wi cosine-weighted on the upper hemisphere from u
     // (sample_cosine_hemisphere in core/sampling.h), and return a BSDFSample
     // with that wi, f = diffuse_f(albedo, wo, wi) and pdf = cos(theta) / pi
     // (cosine_hemisphere_pdf). When the pdf is 0 (wi on the horizon) return
     // BSDFSample{} (pdf 0 means "no sample").
+    // [/guided]
     (void)albedo, (void)wo, (void)u;
     throw NotImplemented(3, "2", "diffuse_sample_f");
 }

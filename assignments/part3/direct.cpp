@@ -26,17 +26,22 @@ namespace pt::student {
 
 Color zero_bounce_radiance(const RenderContext& context, const Ray& ray,
                            const SurfaceInteraction& isect) {
-    // TODO(part3.3): the light emitted by the surface towards the camera:
+    // TODO(part3.3): zero_bounce_radiance, as src/stages/direct.h states its contract.
+    // [guided]
+    // the light emitted by the surface towards the camera:
     // isect.material->emission when isect.wo is on the front side of the
     // geometric normal (dot(isect.ng, isect.wo) > 0), black otherwise
     // (lights emit on one side only).
+    // [/guided]
     (void)context, (void)ray, (void)isect;
     throw NotImplemented(3, "3", "zero_bounce_radiance");
 }
 
 Color estimate_direct_lighting_hemisphere(const RenderContext& context, const Ray& ray,
                                           const SurfaceInteraction& isect, Rng& rng) {
-    // TODO(part3.4): uniform hemisphere sampling. With the BSDF from
+    // TODO(part3.4): estimate_direct_lighting_hemisphere, as src/stages/direct.h states its contract.
+    // [guided]
+    // uniform hemisphere sampling. With the BSDF from
     // context.bsdf_at(isect) (return black if bsdf.is_delta()), take
     // N = context.settings.light_samples * context.lights.non_delta_count()
     // directions (return black if N is 0: no light can be hit) wi =
@@ -48,29 +53,36 @@ Color estimate_direct_lighting_hemisphere(const RenderContext& context, const Ra
     // is graded with the reference's emission and a bug in task 3.3 costs
     // task 3.3 alone), or context.lights.environment_radiance on a miss.
     // Return 1/N sum f(wo, wi) Li cos(theta) / pdf.
+    // [/guided]
     (void)context, (void)ray, (void)isect, (void)rng;
     throw NotImplemented(3, "4", "estimate_direct_lighting_hemisphere");
 }
 
 Color estimate_direct_lighting_importance(const RenderContext& context, const Ray& ray,
                                           const SurfaceInteraction& isect, Rng& rng) {
-    // TODO(part3.5): light (importance) sampling. With the BSDF (black if
+    // TODO(part3.5): estimate_direct_lighting_importance, as src/stages/direct.h states its contract.
+    // [guided]
+    // light (importance) sampling. With the BSDF (black if
     // bsdf.is_delta()) and LightSampleContext ref{isect.p, bsdf.frame().n},
     // for every light take n = light->sample_count(context.settings.light_samples)
     // samples s = light->sample_Li(ref, rng.next_2d()). Skip a sample that
     // is invalid, below the surface (local wi.z <= 0), or blocked
     // (context.occluded(isect.spawn_ray_to(s.p))); else add
     // f(wo, wi) s.L cos(theta) / s.pdf. Average per light, sum over lights.
+    // [/guided]
     (void)context, (void)ray, (void)isect, (void)rng;
     throw NotImplemented(3, "5", "estimate_direct_lighting_importance");
 }
 
 Color one_bounce_radiance(const RenderContext& context, const Ray& ray,
                           const SurfaceInteraction& isect, Rng& rng) {
-    // TODO(part3.6): pick the estimator by context.settings.direct:
+    // TODO(part3.6): one_bounce_radiance, as src/stages/direct.h states its contract.
+    // [guided]
+    // pick the estimator by context.settings.direct:
     // DirectStrategy::hemisphere (-H) -> estimate_direct_lighting_hemisphere,
     // DirectStrategy::light -> estimate_direct_lighting_importance,
     // DirectStrategy::mis -> estimate_direct_lighting_mis (task 3.8, mis.cpp).
+    // [/guided]
     (void)context, (void)ray, (void)isect, (void)rng;
     throw NotImplemented(3, "6", "one_bounce_radiance");
 }

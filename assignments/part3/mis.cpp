@@ -27,24 +27,32 @@
 namespace pt::student {
 
 double power_heuristic(double nf, double f_pdf, double ng, double g_pdf) {
-    // TODO(part3.7): Veach's power heuristic with exponent 2, as the
+    // TODO(part3.7): power_heuristic, as src/stages/direct.h states its contract.
+    // [guided]
+    // Veach's power heuristic with exponent 2, as the
     // contract in src/stages/direct.h states it, limits included: 0 when
     // nf f_pdf is 0, 1 when it is infinite, and no NaN or overflow for
     // densities as large as 1e300 (divide before you square).
+    // [/guided]
     (void)nf, (void)f_pdf, (void)ng, (void)g_pdf;
     throw NotImplemented(3, "7", "power_heuristic");
 }
 
 double balance_heuristic(double nf, double f_pdf, double ng, double g_pdf) {
-    // TODO(part3.7): Veach's balance heuristic, with the same limits as
+    // TODO(part3.7): balance_heuristic, as src/stages/direct.h states its contract.
+    // [guided]
+    // Veach's balance heuristic, with the same limits as
     // power_heuristic.
+    // [/guided]
     (void)nf, (void)f_pdf, (void)ng, (void)g_pdf;
     throw NotImplemented(3, "7", "balance_heuristic");
 }
 
 Color estimate_direct_lighting_mis(const RenderContext& context, const Ray& ray,
                                    const SurfaceInteraction& isect, Rng& rng) {
-    // TODO(part3.8): direct light by light samples and BSDF samples, each
+    // TODO(part3.8): estimate_direct_lighting_mis, as src/stages/direct.h states its contract.
+    // [guided]
+    // direct light by light samples and BSDF samples, each
     // weighted by w = mis_weight(context, ...) (your task 3.7, through the
     // stage table). Black for a delta BSDF. With nb = max(1, -l) BSDF samples:
     //  1. Light samples, as in task 3.5: for every light, its n samples; an
@@ -58,6 +66,7 @@ Color estimate_direct_lighting_mis(const RenderContext& context, const Ray& ray,
     //     1 if it found no light). Average over nb.
     // The result has the same mean as task 3.5's, with less noise where the
     // BSDF is glossy and the light large.
+    // [/guided]
     (void)context, (void)ray, (void)isect, (void)rng;
     throw NotImplemented(3, "8", "estimate_direct_lighting_mis");
 }

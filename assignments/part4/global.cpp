@@ -28,7 +28,9 @@ namespace pt::student {
 Color at_least_one_bounce_radiance(const RenderContext& context, const Ray& ray,
                                    const SurfaceInteraction& isect, const Color& throughput,
                                    Rng& rng) {
-    // TODO(part4.1): the light leaving isect towards the camera after at
+    // TODO(part4.1): at_least_one_bounce_radiance, as src/stages/global.h states its contract.
+    // [guided]
+    // the light leaving isect towards the camera after at
     // least one bounce, recursively. With bsdf = context.bsdf_at(isect),
     // wo = bsdf.to_local(isect.wo), bounces = isect.depth + 1, m =
     // context.settings.max_depth and counted = context.settings.accumulate_bounces
@@ -51,12 +53,15 @@ Color at_least_one_bounce_radiance(const RenderContext& context, const Ray& ray,
     //  7. If hit and bounces < m: L += weight * at_least_one_bounce_radiance(
     //     context, next, *hit, throughput * weight, rng).
     // Return L.
+    // [/guided]
     (void)context, (void)ray, (void)isect, (void)throughput, (void)rng;
     throw NotImplemented(4, "1", "at_least_one_bounce_radiance");
 }
 
 Color est_radiance_global_illumination(const RenderContext& context, const Ray& ray, Rng& rng) {
-    // TODO(part4.2): the radiance arriving along the camera ray. With
+    // TODO(part4.2): est_radiance_global_illumination, as src/stages/global.h states its contract.
+    // [guided]
+    // the radiance arriving along the camera ray. With
     // zero = context.settings.accumulate_bounces || context.settings.max_depth == 0
     // and isect = context.intersect(ray):
     //  - on a miss: context.lights.environment_radiance(ray.d) if zero, else black;
@@ -64,6 +69,7 @@ Color est_radiance_global_illumination(const RenderContext& context, const Ray& 
     //    if zero, plus context.stages.global.at_least_one_bounce_radiance(
     //    context, ray, *isect, Color(1.0), rng) if max_depth >= 1 (through
     //    the stage table, so that each task can be graded on its own).
+    // [/guided]
     (void)context, (void)ray, (void)rng;
     throw NotImplemented(4, "2", "est_radiance_global_illumination");
 }

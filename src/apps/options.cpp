@@ -257,6 +257,7 @@ std::string usage(const std::string& program, StageSet default_student) {
       << "  --sampler independent|stratified|halton|sobol|zsobol                   ["
       << (default_student.contains(Stage::sampler) ? "stratified" : to_string(kDefaultSampler)) << "]\n"
       << "  --adaptive split|cs184  stopping rule of -a: split (unbiased) or Part 5's  [split]\n"
+      << (default_student.empty() ? "" : "  --deliverables DIR  render this part's write-up images and DIR/index.html (only -t N beside it)\n")
       << "\nexit codes: 0 ok, 1 failure, 2 bad input, 3 a student stage is not implemented yet\n";
     return s.str();
 }

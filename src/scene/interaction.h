@@ -30,6 +30,7 @@ struct SurfaceInteraction {
     double t = 0;  ///< ray parameter of the hit
     double b1 = 0, b2 = 0;  ///< barycentrics of the hit (triangles)
     uint32_t primitive = 0;  ///< primitive id
+    uint32_t part = 0xffffffffu;  ///< for an instance: the primitive of its shape (Hit::part); else kNoIndex
     const Material* material = nullptr;  ///< never null for a real hit
     int depth = 0;  ///< depth of the ray that found this hit
 

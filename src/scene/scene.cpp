@@ -33,10 +33,13 @@ Triangle Scene::triangle(uint32_t prim) const {
 }
 
 const Material& Scene::material_of(uint32_t prim) const {
+    if (is_instance(prim)) return materials[instance(prim).material];
     return materials[is_sphere(prim) ? sphere_record(prim).material : triangles[prim].material];
 }
 
-Vec2 Scene::uv_at(uint32_t prim, double b1, double b2, const Vec3& p) const {
+Vec2 Scene::uv_at(uint32_t prim, double b1, double b2, const Vec3& p, uint32_t part) const {
+    if (is_instance(prim))
+        return shape_of(prim).uv_at(part, b1, b2, instance(prim).to_world.inverse_point(p));
     if (is_sphere(prim)) {
         const Sphere& s = sphere_record(prim).sphere;
         Vec3 d = (p - s.center) / s.radius;
@@ -53,7 +56,11 @@ Vec2 Scene::uv_at(uint32_t prim, double b1, double b2, const Vec3& p) const {
     return {b1 + b2, b2};
 }
 
-Vec3 Scene::dpdu(uint32_t prim, const Vec3& p) const {
+Vec3 Scene::dpdu(uint32_t prim, const Vec3& p, uint32_t part) const {
+    if (is_instance(prim)) {
+        const Transform& m = instance(prim).to_world;
+        return m.vector(shape_of(prim).dpdu(part, m.inverse_point(p)));
+    }
     if (is_sphere(prim)) {
         // The direction of growing longitude (uv_at's u) about +y.
         Vec3 d = p - sphere_record(prim).sphere.center;
@@ -73,6 +80,7 @@ Vec3 Scene::dpdu(uint32_t prim, const Vec3& p) const {
 }
 
 BBox Scene::primitive_bounds(uint32_t prim) const {
+    if (is_instance(prim)) return instance(prim).bounds;
     if (is_sphere(prim)) {
         const Sphere& s = sphere_record(prim).sphere;
         return BBox(s.center - Vec3(s.radius), s.center + Vec3(s.radius));
@@ -99,6 +107,8 @@ void Scene::finalize() {
         bounds.expand(primitive_bounds(i));
         if (material_of(i).is_emissive() && primitive_area(i) > 0) emitters.push_back(i);
     }
+    // Instances never emit (the loader refuses emissive instance materials).
+    for (const InstanceRecord& instance : instances) bounds.expand(instance.bounds);
 }
 
 }  // namespace pt

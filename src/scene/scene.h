@@ -4,17 +4,37 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "core/bbox.h"
+#include "core/transform.h"
 #include "scene/camera.h"
 #include "scene/geometry.h"
 #include "scene/light.h"
 #include "scene/material.h"
 
 namespace pt {
+
+struct Scene;
+
+/// A named entry of the scene's "shapes" table: geometry in its own object
+/// space, stored once however many instances place it.
+struct ShapeRecord {
+    std::string name;
+    std::shared_ptr<const Scene> geometry;  ///< triangles and spheres only; material 0 everywhere
+};
+
+/// One placement of a shape ({"type": "instance"}): the shape's geometry
+/// seen through `to_world` (rays go the other way, by its inverse).
+struct InstanceRecord {
+    uint32_t shape = 0;     ///< index into Scene::shapes
+    uint32_t material = 0;  ///< index into Scene::materials
+    Transform to_world;     ///< object space -> world space
+    BBox bounds;            ///< world-space bounds (the shape's box, transformed)
+};
 
 struct Scene {
     std::string name;       ///< file name without directory and extension; default output name
@@ -31,6 +51,11 @@ struct Scene {
     /// Per triangle, indices into `uvs` (kNoIndex: none); empty when no triangle has any.
     std::vector<std::array<uint32_t, 3>> triangle_uvs;
     std::vector<SphereRecord> spheres;       ///< primitive ids T .. T+S-1
+    std::vector<ShapeRecord> shapes;         ///< the "shapes" table
+    /// Instances: ids T+S .. T+S+I-1, outside primitive_count() (the
+    /// accelerators of the scene's own primitives never see them; the
+    /// instance level of stages/instance_accelerator.h does).
+    std::vector<InstanceRecord> instances;
 
     std::vector<PointLight> point_lights;
     std::vector<DirectionalLight> directional_lights;
@@ -41,7 +66,13 @@ struct Scene {
     /// Bounds of all primitives; set by finalize().
     BBox bounds;
 
+    /// Triangles and spheres; instances come after them (is_instance).
     uint32_t primitive_count() const { return uint32_t(triangles.size() + spheres.size()); }
+    bool is_instance(uint32_t prim) const { return prim >= primitive_count(); }
+    const InstanceRecord& instance(uint32_t prim) const { return instances[prim - primitive_count()]; }
+    const Scene& shape_of(uint32_t prim) const { return *shapes[instance(prim).shape].geometry; }
+    /// Whether there is anything to hit: primitives or instances.
+    bool has_geometry() const { return primitive_count() > 0 || !instances.empty(); }
     bool is_sphere(uint32_t prim) const { return prim >= triangles.size(); }
     const SphereRecord& sphere_record(uint32_t prim) const { return spheres[prim - triangles.size()]; }
     /// The triangle with id `prim` (< triangles.size()) as the intersection routines see it.
@@ -51,11 +82,13 @@ struct Scene {
     /// primitive `prim`: interpolated vt for triangles that have them, else
     /// (b1 + b2, b2) (pbrt's default (0,0), (1,0), (1,1) corners); on a sphere,
     /// u the longitude about +y from +z, v = 1 at the top pole, 0 at the bottom.
-    Vec2 uv_at(uint32_t prim, double b1, double b2, const Vec3& p) const;
+    /// For an instance, `part` is the primitive of its shape that was hit
+    /// (SurfaceInteraction::part) and p is a world-space point.
+    Vec2 uv_at(uint32_t prim, double b1, double b2, const Vec3& p, uint32_t part = kNoIndex) const;
     /// The surface's first tangent at p, dp/du (not unit): the x axis of an
     /// anisotropic BSDF's frame. A triangle without texture coordinates
     /// gives its first edge; a sphere the direction of growing longitude.
-    Vec3 dpdu(uint32_t prim, const Vec3& p) const;
+    Vec3 dpdu(uint32_t prim, const Vec3& p, uint32_t part = kNoIndex) const;
     BBox primitive_bounds(uint32_t prim) const;
     double primitive_area(uint32_t prim) const;
     bool has_lights() const {

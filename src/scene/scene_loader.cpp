@@ -238,6 +238,7 @@ public:
 
     void read_object(const JsonReader& j) {
         std::string type = j.string("type");
+        if (type == "instance") return read_instance(j);
         Transform transform = j.has("transform") ? read_transform(j.object("transform")) : Transform();
         if (type == "mesh") {
             j.allow_only({"type", "file", "material", "transform"});
@@ -278,8 +279,65 @@ public:
             mesh.material = material(j);
             add_mesh(scene_, mesh, transform);
         } else {
-            j.fail("type", "unknown object type \"" + type + "\" (expected mesh, sphere, quad or torus_knot)");
+            j.fail("type", "unknown object type \"" + type + "\" (expected mesh, sphere, quad, torus_knot or instance)");
         }
+    }
+
+    /// The "shapes" table: NAME -> a mesh, torus knot or sphere in object
+    /// space, without a material (its instances give one).
+    void read_shapes(const JsonReader& root) {
+        if (!root.has("shapes")) return;
+        for (const auto& [name, j] : root.object_map("shapes")) {
+            auto shape = std::make_shared<Scene>();
+            shape->path = path_;
+            shape->materials.push_back(Material{});  // placeholder: instances bring their own
+            std::string type = j.string("type");
+            if (type == "mesh") {
+                j.allow_only({"type", "file", "transform"});
+                ObjLoadOptions options;
+                options.where = j.file() + ": " + j.path_of("");
+                options.material = 0;
+                add_mesh(*shape, read_obj(*shape, resolve(path_, j.string("file")), options), read_shape_transform(j));
+            } else if (type == "torus_knot") {
+                j.allow_only({"type", "p", "q", "radius", "tube_radius", "segments", "sides", "transform"});
+                int segments = j.integer("segments", 3, 1 << 22, 500), sides = j.integer("sides", 3, 1 << 16, 10);
+                check_geometry_budget(2 * uint64_t(segments) * uint64_t(sides), uint64_t(segments) * uint64_t(sides),
+                                      j.file() + ": " + j.path_of("") + " (2 * segments * sides)");
+                MeshData mesh = make_torus_knot(j.integer("p", 1, 64, 2), j.integer("q", 1, 64, 3),
+                                                j.positive("radius", 1.0), j.positive("tube_radius", 0.15), segments, sides);
+                mesh.material = 0;
+                add_mesh(*shape, mesh, read_shape_transform(j));
+            } else if (type == "sphere") {
+                j.allow_only({"type", "center", "radius"});
+                shape->spheres.push_back({{j.vec3("center", Vec3(0)), j.positive("radius", 1.0)}, 0});
+            } else {
+                j.fail("type", "unknown shape type \"" + type + "\" (expected mesh, torus_knot or sphere)");
+            }
+            shape->finalize();
+            shape_index_[name] = uint32_t(scene_.shapes.size());
+            scene_.shapes.push_back({name, shape});
+        }
+    }
+
+    /// {"type": "instance", "shape": NAME, "transform": {...}, "material": M}.
+    void read_instance(const JsonReader& j) {
+        j.allow_only({"type", "shape", "transform", "material"});
+        std::string name = j.string("shape");
+        auto it = shape_index_.find(name);
+        if (it == shape_index_.end()) j.fail("shape", "no shape named \"" + name + "\" in \"shapes\"");
+        InstanceRecord instance;
+        instance.shape = it->second;
+        instance.material = material(j);
+        if (scene_.materials[instance.material].is_emissive())
+            j.fail("material", "an instance cannot emit light (instanced area lights are not supported); "
+                               "place an emitting object directly in \"objects\"");
+        instance.to_world = j.has("transform") ? read_transform(j.object("transform")) : Transform();
+        const BBox& box = scene_.shapes[instance.shape].geometry->bounds;
+        for (int corner = 0; corner < 8; ++corner)
+            instance.bounds.expand(instance.to_world.point(
+                Vec3(corner & 1 ? box.max.x : box.min.x, corner & 2 ? box.max.y : box.min.y,
+                     corner & 4 ? box.max.z : box.min.z)));
+        scene_.instances.push_back(instance);
     }
 
     void read_light(const JsonReader& j) {
@@ -312,9 +370,14 @@ public:
     }
 
 private:
+    Transform read_shape_transform(const JsonReader& j) const {
+        return j.has("transform") ? read_transform(j.object("transform")) : Transform();
+    }
+
     Scene& scene_;
     const std::string& path_;
     std::map<std::string, uint32_t> material_index_;
+    std::map<std::string, uint32_t> shape_index_;
 };
 
 }  // namespace
@@ -322,7 +385,7 @@ private:
 Scene parse_json_scene(const std::string& text, const std::string& path) {
     nlohmann::json root_json = parse_json_strictly(text, path);
     JsonReader root(root_json, path, "");
-    root.allow_only({"description", "camera", "film", "materials", "objects", "lights"});
+    root.allow_only({"description", "camera", "film", "materials", "shapes", "objects", "lights"});
 
     Scene scene;
     scene.path = path;
@@ -338,6 +401,7 @@ Scene parse_json_scene(const std::string& text, const std::string& path) {
     }
     SceneBuilder builder(scene, path);
     builder.read_materials(root);
+    builder.read_shapes(root);
     for (const JsonReader& object : root.object_array("objects")) builder.read_object(object);
     if (root.has("lights"))
         for (const JsonReader& light : root.object_array("lights")) builder.read_light(light);
@@ -347,7 +411,7 @@ Scene parse_json_scene(const std::string& text, const std::string& path) {
     if (root.has("camera")) {
         read_camera(scene, root.object("camera"));
     } else {
-        if (scene.primitive_count() == 0) root.fail("", "a scene without objects needs a \"camera\"");
+        if (!scene.has_geometry()) root.fail("", "a scene without objects needs a \"camera\"");
         frame_camera_on_scene(scene.camera, scene);
     }
     scene.camera.finalize(path + ": camera");

@@ -50,6 +50,7 @@ bool all_lights_within(const Scene& scene, Inside inside) {
 
 bool scene_can_occlude(const Scene& scene) {
     const uint32_t count = scene.primitive_count();
+    if (!scene.instances.empty()) return true;  // instanced shapes: assume so
     if (count == 0) return false;
     if (!scene.spheres.empty()) {
         if (count > 1) return true;  // a sphere and anything else: assume so
@@ -112,10 +113,11 @@ bool scene_can_occlude(const Scene& scene) {
 Effects analyze_effects(const Scene& scene, const RenderSettings& settings) {
     Effects e;
     const int m = settings.max_depth;
-    const bool has_geometry = scene.primitive_count() > 0;
+    const bool has_geometry = scene.has_geometry();
     bool any_nonspecular = false, any_specular = false;
     bool mirror = false, glass = false, glossy = false;
-    for (uint32_t i = 0; i < scene.primitive_count(); ++i) {
+    const uint32_t ids = scene.primitive_count() + uint32_t(scene.instances.size());  // instances last
+    for (uint32_t i = 0; i < ids; ++i) {
         switch (scene.material_of(i).type) {
             case MaterialType::diffuse:
                 any_nonspecular = true;

@@ -33,6 +33,9 @@ struct Hit {
                            ///< towards the ray.
     double b1 = 0, b2 = 0;  ///< barycentric weights of p1 and p2 (p0's is 1 - b1 - b2); 0 for spheres
     uint32_t primitive = 0;  ///< primitive id; set by the caller (the accelerator), not by the routines
+    /// For a hit on an instance (primitive is its id): the primitive of its
+    /// shape that was hit, whose barycentrics b1, b2 are; kNoIndex otherwise.
+    uint32_t part = kNoIndex;
 };
 
 using IntersectTriangleFn = std::optional<Hit> (*)(const Triangle& triangle, const Ray& ray);

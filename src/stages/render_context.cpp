@@ -9,7 +9,38 @@
 
 namespace pt {
 
+namespace {
+
+/// The interaction on an instance: made in the shape's object space (the
+/// ray mapped by the inverse transform, so t is the same), then mapped
+/// back; normals by the inverse transpose (Transform::normal), the point's
+/// error bound carried through the map (Transform::point_error).
+SurfaceInteraction make_instance_interaction(const Scene& scene, const Ray& ray, const Hit& hit) {
+    const Transform& m = scene.instance(hit.primitive).to_world;
+    Ray local = ray;
+    local.o = m.inverse_point(ray.o);
+    local.d = m.inverse_vector(ray.d);
+    Hit part = hit;
+    part.primitive = hit.part;
+    part.part = kNoIndex;
+    SurfaceInteraction si = make_interaction(scene.shape_of(hit.primitive), local, part);
+    si.p_error = m.point_error(si.p, si.p_error);
+    si.p = m.point(si.p);
+    si.ng = m.normal(si.ng);
+    si.n = hit.n;  // the accelerator mapped it already
+    double len = si.n.norm();
+    si.n = (len > 0 && std::isfinite(len)) ? si.n / len : si.ng;
+    si.wo = (-ray.d).unit();
+    si.primitive = hit.primitive;
+    si.part = hit.part;
+    si.material = &scene.material_of(hit.primitive);
+    return si;
+}
+
+}  // namespace
+
 SurfaceInteraction make_interaction(const Scene& scene, const Ray& ray, const Hit& hit) {
+    if (scene.is_instance(hit.primitive)) return make_instance_interaction(scene, ray, hit);
     SurfaceInteraction si;
     si.t = hit.t;
     si.b1 = hit.b1;
@@ -133,12 +164,12 @@ BSDF RenderContext::bsdf_at(const SurfaceInteraction& isect) const {
     }
     // A textured albedo is looked up at the hit's (u, v) (scene/texture.h).
     Color albedo = material.albedo_texture
-                       ? material.albedo_texture->evaluate(scene.uv_at(isect.primitive, isect.b1, isect.b2, isect.p))
+                       ? material.albedo_texture->evaluate(scene.uv_at(isect.primitive, isect.b1, isect.b2, isect.p, isect.part))
                        : material.albedo;
     // Anisotropic roughness needs the frame's x axis along the surface's u direction.
     const bool anisotropic = material.roughness_y >= 0 && material.roughness_y != material.roughness &&
                              (material.type == MaterialType::microfacet || keeps_normal);
-    Frame frame = anisotropic ? Frame::with_tangent(n, scene.dpdu(isect.primitive, isect.p)) : Frame(n);
+    Frame frame = anisotropic ? Frame::with_tangent(n, scene.dpdu(isect.primitive, isect.p, isect.part)) : Frame(n);
     return BSDF(material, frame, {stages.direct.diffuse_f, stages.direct.diffuse_sample_f}, albedo);
 }
 

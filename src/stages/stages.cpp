@@ -4,6 +4,7 @@
 #include "scene/scene.h"
 #include "stages/bvh.h"
 #include "stages/embree_accel.h"
+#include "stages/instance_accelerator.h"
 #include "stages/kd_tree.h"
 #include "stages/uniform_grid.h"
 
@@ -110,19 +111,27 @@ AccelKind parse_accel_kind(const std::string& name, const std::string& flag) {
 
 std::unique_ptr<Accelerator> build_accelerator(const Scene& scene, const Stages& stages,
                                                const AcceleratorSettings& settings) {
+    std::unique_ptr<Accelerator> own;
     switch (settings.kind) {
         case AccelKind::none:
-            return make_linear_scan(scene, stages.intersect);
+            own = make_linear_scan(scene, stages.intersect);
+            break;
         case AccelKind::grid:
-            return make_uniform_grid(scene, stages.intersect);
+            own = make_uniform_grid(scene, stages.intersect);
+            break;
         case AccelKind::kdtree:
-            return make_kd_tree(scene, stages.intersect);
+            own = make_kd_tree(scene, stages.intersect);
+            break;
         case AccelKind::embree:
-            return make_embree_accelerator(scene, stages.intersect);
+            own = make_embree_accelerator(scene, stages.intersect);
+            break;
         case AccelKind::bvh:
+            own = stages.bvh.build(scene, stages.intersect, settings);
             break;
     }
-    return stages.bvh.build(scene, stages.intersect, settings);
+    // Instanced shapes get their own accelerators of the same kind, under a
+    // BVH over the instances (stages/instance_accelerator.h).
+    return add_instances(std::move(own), scene, stages, settings);
 }
 
 }  // namespace pt

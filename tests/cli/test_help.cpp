@@ -21,6 +21,7 @@ TEST_CASE("every executable, bench subcommand, tool and script answers --help wi
         source_path("scripts/demo.sh"), source_path("scripts/test.sh"), source_path("scripts/setup.sh"),
         source_path("scripts/build.sh"), source_path("scripts/sanitize.sh"), source_path("scripts/fuzz.sh"),
         source_path("scripts/readme_images.sh"), source_path("scripts/wait_for_apt_lock.sh"),
+        source_path("scripts/handout.sh"), source_path("scripts/instances_scene.sh"),
     };
     for (const std::string& command : commands) {
         for (const char* flag : {"--help", "-h"}) {
