@@ -37,4 +37,14 @@ if(PT_BUILD_TESTS)
   endif()
 endif()
 
+# SHA-256 of the grader's reference cache entries (src/grade/reference_renders.cpp).
+find_path(NETTLE_INCLUDE_DIR nettle/sha2.h)
+find_library(NETTLE_LIBRARY nettle)
+if(NOT NETTLE_INCLUDE_DIR OR NOT NETTLE_LIBRARY)
+  pt_missing("nettle (SHA-256)" nettle-dev)
+endif()
+add_library(pt_nettle INTERFACE)
+target_include_directories(pt_nettle SYSTEM INTERFACE ${NETTLE_INCLUDE_DIR})
+target_link_libraries(pt_nettle INTERFACE ${NETTLE_LIBRARY})
+
 find_package(Threads REQUIRED)

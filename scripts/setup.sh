@@ -8,14 +8,14 @@ case "${1:-}" in
     cat <<'USAGE'
 usage: scripts/setup.sh [EXTRA_PACKAGE...]
 Installs the missing Debian 12 packages the project builds with (cmake g++ make libstb-dev
-libtinyobjloader-dev doctest-dev nlohmann-json3-dev, and any given). As root it runs apt-get,
+libtinyobjloader-dev doctest-dev nlohmann-json3-dev nettle-dev bubblewrap, and any given). As root it runs apt-get,
 first waiting up to 10 minutes for another apt (unattended-upgrades) to release its lock;
 otherwise it prints the sudo apt-get command and exits 1.
 USAGE
     exit 0 ;;
 esac
 
-packages=(cmake g++ make libstb-dev libtinyobjloader-dev libtinyexr-dev doctest-dev nlohmann-json3-dev "$@")
+packages=(cmake g++ make libstb-dev libtinyobjloader-dev libtinyexr-dev doctest-dev nlohmann-json3-dev nettle-dev bubblewrap "$@")
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -6,6 +6,7 @@
 // manifests, scenes). See docs/grading.md.
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <sstream>
 #include <thread>
@@ -14,6 +15,9 @@
 #include "core/error.h"
 #include "grade/check_registry.h"
 #include "grade/grader.h"
+#include "grade/isolation.h"
+#include "grade/runners.h"
+#include "grade/sandbox.h"
 #include "grade/report.h"
 
 namespace pt {
@@ -28,12 +32,15 @@ struct GradeOptions {
     int threads = std::max(1u, std::thread::hardware_concurrency());
     std::vector<int> parts;          ///< empty = all parts with a manifest
     std::vector<std::string> tasks;  ///< empty = all tasks
-    double timeout = 600;            ///< seconds per task in its own process; 0 = in this process
+    double timeout = 600;            ///< seconds per task in its runner; 0 = no limit
+    double budget = 0;               ///< seconds for the whole submission; 0 = no limit
+    bool sandbox = true;             ///< bubblewrap around the runners
     bool quiet = false, help = false, list_checks = false;
 };
 
 const char* kUsage =
     "usage: grade [--out DIR] [--seed N] [--part N,...] [--task ID,...] [-t N] [-q] [--timeout S]\n"
+    "             [--budget S] [--no-sandbox]\n"
     "             [--cache DIR | --no-cache] [--manifests DIR] [--assets DIR] [--list-checks]\n"
     "Grades the student code this build was made with (-DPT_STUDENT_DIR) against the reference.\n"
     "  --out DIR        where report.md, report.json, report.html and images/ go    "
@@ -44,8 +51,11 @@ const char* kUsage =
     "  --task ID,...    grade only these tasks, e.g. part1.3                        [all]\n"
     "  -t N             render threads (results do not depend on it)               [all cores]\n"
     "  -q               no per-task lines\n"
-    "  --timeout S      each task runs in its own process and fails after S seconds;\n"
-    "                   a crash fails only its task; 0 = no child processes       [600]\n"
+    "  --timeout S      each task runs in a runner process (with the student code,\n"
+    "                   never in grade) and fails after S seconds; 0 = no limit    [600]\n"
+    "  --budget S       wall-clock seconds for all tasks; later tasks fail unrun [no limit]\n"
+    "  --no-sandbox     no bubblewrap around the runners (setrlimit and a process group\n"
+    "                   only; used anyway where bwrap cannot run)\n"
     "  --cache DIR      converged reference renders are cached here                 "
     "[BUILD/grade_cache]\n"
     "  --no-cache       render the references anew\n"
@@ -87,6 +97,10 @@ GradeOptions parse(const std::vector<std::string>& args) {
             o.threads = int(parse_whole_number(a, value(), 1, 1024));
         } else if (a == "--timeout") {
             o.timeout = double(parse_whole_number(a, value(), 0, 86400));
+        } else if (a == "--budget") {
+            o.budget = double(parse_whole_number(a, value(), 0, 864000));
+        } else if (a == "--no-sandbox") {
+            o.sandbox = false;
         } else if (a == "--cache") {
             o.cache_dir = value();
         } else if (a == "--no-cache") {
@@ -106,6 +120,13 @@ GradeOptions parse(const std::vector<std::string>& args) {
     }
     if (o.out_dir.empty()) throw InputError("--out: expected a folder");
     return o;
+}
+
+/// The folder of this executable: the runners are built next to it.
+std::string runner_dir() {
+    std::error_code ec;
+    std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+    return ec ? std::string(".") : self.parent_path().string();
 }
 
 void print_task(const TaskResult& t) {
@@ -162,14 +183,36 @@ int run(const GradeOptions& o) {
                           m.tasks.end());
     }
 
-    Stages student = make_stages(StageSet::all());
+    // grade holds no student code: `student` is a placeholder that the
+    // replay of each runner's log replaces (grade/isolation.h).
+    Stages student = make_stages(StageSet::none());
     Stages reference = make_stages(StageSet::none());
     GradeEnvironment env{student,      reference,   o.seed,   o.threads,
                          o.assets_dir, o.cache_dir, o.out_dir};
+    for (const PartManifest& m : manifests)
+        for (const TaskSpec& t : m.tasks)
+            runner_key(t);  // every task has a runner (InputError, exit 2, otherwise)
+    Isolation iso;
+    iso.timeout = o.timeout > 0 ? o.timeout : 1e9;
+    iso.budget = o.budget;
+    const std::string runners = runner_dir();
+    const std::string assets = std::filesystem::absolute(o.assets_dir).string();
+    Sandbox sandbox = make_sandbox({runners, assets, std::filesystem::absolute(o.manifests_dir).string()},
+                                   o.sandbox);
+    iso.sandbox_prefix = sandbox.prefix;
+    notes.push_back("isolation of the student code: " + sandbox.description);
+    iso.runner = [&](const TaskSpec& t) {
+        return std::vector<std::string>{runners + "/grade_runner_" + runner_key(t),
+                                        "--manifest", std::filesystem::absolute(t.manifest).string(),
+                                        "--task", t.id,
+                                        "--seed", std::to_string(o.seed),
+                                        "--threads", std::to_string(o.threads),
+                                        "--assets", assets};
+    };
     if (!o.quiet)
         std::printf("grade: student code %s, seed %llu\n", PT_STUDENT_DIR_PATH,
                     (unsigned long long)o.seed);
-    GradeReport report = grade_all(manifests, env, o.quiet ? nullptr : print_task, o.timeout);
+    GradeReport report = grade_all(manifests, env, o.quiet ? nullptr : print_task, iso);
     report.notes.insert(report.notes.begin(), notes.begin(), notes.end());
     report.student_dir = PT_STUDENT_DIR_PATH;
     write_reports(report, o.out_dir);

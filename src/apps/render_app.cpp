@@ -210,7 +210,10 @@ int run(const std::vector<std::string>& args, const std::string& program, StageS
     if (!note.empty()) std::cout << program << ": note: " << note << "\n";
 
     timer.reset();
-    std::unique_ptr<Accelerator> accelerator = build_accelerator(scene, stages, options.accelerator);
+    // --bvh-view walks L/R paths of the binary tree: keep the BVH binary.
+    AcceleratorSettings accel_settings = options.accelerator;
+    if (options.bvh_view) accel_settings.width = 2;
+    std::unique_ptr<Accelerator> accelerator = build_accelerator(scene, stages, accel_settings);
     seconds.build = timer.seconds();
     if (options.bvh_view) {
         // The BVH view replaces the integrator (render/bvh_view.h).

@@ -9,6 +9,7 @@
 #include "core/timer.h"
 #include "grade/check_registry.h"
 #include "grade/isolation.h"
+#include "grade/student_calls.h"
 
 namespace pt {
 
@@ -49,14 +50,19 @@ TaskResult grade_task(const TaskSpec& spec, const GradeEnvironment& env) {
         r = TaskResult{};
         r.status = TaskStatus::not_implemented;
         r.value = NAN;
-        r.message = e.what();
+        r.message = printable(e.what());
     } catch (const InputError&) {
         throw;
+    } catch (const RunnerOutputError& e) {
+        r = TaskResult{};
+        r.status = TaskStatus::fail;
+        r.value = NAN;
+        r.message = printable(e.what());
     } catch (const std::exception& e) {
         r = TaskResult{};
         r.status = TaskStatus::fail;
         r.value = NAN;
-        r.message = std::string("the student code threw an exception: ") + e.what();
+        r.message = "the student code threw an exception: " + printable(e.what());
     }
     r.part = spec.part;
     r.id = spec.id;
@@ -72,6 +78,16 @@ TaskResult grade_task(const TaskSpec& spec, const GradeEnvironment& env) {
 
 GradeReport grade_all(const std::vector<PartManifest>& manifests, const GradeEnvironment& env,
                       void (*on_task)(const TaskResult&), double isolate_timeout) {
+    if (isolate_timeout > 0) {
+        Isolation iso;
+        iso.timeout = isolate_timeout;
+        return grade_all(manifests, env, on_task, iso);
+    }
+    return grade_all(manifests, env, on_task, Isolation{0});
+}
+
+GradeReport grade_all(const std::vector<PartManifest>& manifests, const GradeEnvironment& env,
+                      void (*on_task)(const TaskResult&), const Isolation& isolation) {
     Timer timer;
     GradeReport report;
     report.seed = env.seed;
@@ -83,8 +99,18 @@ GradeReport grade_all(const std::vector<PartManifest>& manifests, const GradeEnv
         report.parts.push_back("Part " + std::to_string(m.part) +
                                (m.title.empty() ? "" : ": " + m.title));
         for (const TaskSpec& spec : m.tasks) {
-            report.tasks.push_back(isolate_timeout > 0
-                                       ? grade_task_isolated(spec, env, isolate_timeout)
+            if (isolation.budget > 0 && timer.seconds() > isolation.budget) {
+                TaskResult r;
+                r.part = spec.part, r.id = spec.id, r.name = spec.name, r.check = spec.check;
+                r.type = spec.type, r.max_points = spec.points, r.value = NAN;
+                r.message = "not run: the submission's time budget of " +
+                            std::to_string(long(isolation.budget)) + " s is spent";
+                report.tasks.push_back(r);
+                if (on_task) on_task(report.tasks.back());
+                continue;
+            }
+            report.tasks.push_back(isolation.timeout > 0
+                                       ? grade_task_isolated(spec, env, isolation)
                                        : grade_task(spec, env));
             if (on_task) on_task(report.tasks.back());
         }

@@ -44,4 +44,10 @@ TaskResult grade_task(const TaskSpec& spec, const GradeEnvironment& env);
 GradeReport grade_all(const std::vector<PartManifest>& manifests, const GradeEnvironment& env,
                       void (*on_task)(const TaskResult&) = nullptr, double isolate_timeout = 0);
 
+struct Isolation;
+/// grade_all with every task in a child process as `isolation` says
+/// (isolation.h): `grade` runs each task's runner executable.
+GradeReport grade_all(const std::vector<PartManifest>& manifests, const GradeEnvironment& env,
+                      void (*on_task)(const TaskResult&), const Isolation& isolation);
+
 }  // namespace pt

@@ -10,12 +10,20 @@
 #include "grade/params.h"
 #include "grade/reference_renders.h"
 #include "grade/stage_mix.h"
+#include "grade/student_calls.h"
 #include "image/colormap.h"
 #include "image/image_io.h"
 #include "image/metrics.h"
 
 namespace pt {
 namespace {
+
+/// A student render with less than this fraction of the relMSE of the
+/// reference's own renders at the same spp is flagged as suspicious: the
+/// mean of 8 reference renders of 64x64 pixels has a relative spread of a
+/// few percent, and a correct estimator at the same spp cannot do 4 times
+/// better except with a better sampler.
+constexpr double kSuspiciousRatio = 0.25;
 
 std::string fmt(const char* format, double v) {
     char buf[64];
@@ -89,7 +97,13 @@ TaskResult check_image(const TaskSpec& spec, const GradeEnvironment& env) {
             parse_image_case(cases[i], where + ": params.cases[" + std::to_string(i) + "]");
         Scene scene = load_case_scene(c, env.assets_dir);
         // The student first: a stub fails at once, before any reference is rendered.
-        RenderResult student = render_case(scene, c, mixed, c.settings.spp, env.seed, env.threads);
+        RenderResult student =
+            student_render(scene, c, mixed, c.settings.spp, env.seed, env.threads);
+        if (call_mode() == CallMode::record) {  // the runner: only the student's renders
+            if (c.bias_spp != c.settings.spp)
+                student_render(scene, c, mixed, c.bias_spp, env.seed, env.threads);
+            continue;
+        }
         ReferenceRenders ref = reference_renders(scene, c, runs, env);
         if (c.converged_spp == c.settings.spp) {
             // A case without a converged reference must be free of noise: the
@@ -104,7 +118,7 @@ TaskResult check_image(const TaskSpec& spec, const GradeEnvironment& env) {
         RenderResult student_bias =
             c.bias_spp == c.settings.spp
                 ? student
-                : render_case(scene, c, mixed, c.bias_spp, env.seed, env.threads);
+                : student_render(scene, c, mixed, c.bias_spp, env.seed, env.threads);
         NoiseInputs inputs{student.image,     student_bias.image,  c.bias_spp, ref.converged,
                            ref.converged_spp, ref.sample_variance, ref.runs};
         if (c.settings.adaptive) inputs.bias_counts = &student_bias.sample_counts;
@@ -161,6 +175,18 @@ TaskResult check_image(const TaskSpec& spec, const GradeEnvironment& env) {
             {"heat map scale", "per-pixel relMSE, log scale " + fmt("%.3g", scale.low) + " .. " +
                                    fmt("%.3g", scale.high)},
         };
+        // Far less error than any render at this spp can have: it was not
+        // rendered at this spp (a copied or read reference). Flagged, not failed.
+        if (v.reference_relmse > 0 && v.student_relmse < kSuspiciousRatio * v.reference_relmse) {
+            std::string flag = "SUSPICIOUS: relMSE " + fmt("%.3g", v.student_relmse) +
+                               " is under " + fmt("%.2g", kSuspiciousRatio) +
+                               " x the reference's own at the same spp (" +
+                               fmt("%.3g", v.reference_relmse) +
+                               "); was this image rendered at " + std::to_string(c.settings.spp) +
+                               " spp?";
+            out.message = flag + "; " + out.message;
+            result.details.push_back("case " + std::to_string(i + 1) + " " + flag);
+        }
         result.images.push_back(out);
         result.details.push_back("case " + std::to_string(i + 1) + " " + out.label + ": " +
                                  (out.pass ? "pass: " : "FAIL: ") + out.message);

@@ -1,7 +1,10 @@
 #include "grade/isolation.h"
 
+#include <dirent.h>
+#include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -10,16 +13,16 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <fstream>
 
 #include "core/error.h"
 #include "core/timer.h"
 #include "grade/grader.h"
-#include "grade/task_json.h"
+#include "grade/student_calls.h"
 
 namespace pt {
 namespace {
 
-/// Writes all of `text` to `fd` (the pipe may take it in pieces).
 void write_all(int fd, const std::string& text) {
     size_t done = 0;
     while (done < text.size()) {
@@ -45,87 +48,210 @@ TaskResult failed(const TaskSpec& spec, const std::string& message, double secon
     return r;
 }
 
+void limit(int resource, double value) {
+    if (!(value > 0)) return;
+    rlim_t v = value >= 1.8e19 ? RLIM_INFINITY : rlim_t(value);
+    rlimit r{v, v};
+    setrlimit(resource, &r);
+}
+
+/// The child's side before it runs anything of the student's.
+void enter_child(const Isolation& iso) {
+    setsid();  // its own session and process group: killed as a whole
+    prctl(PR_SET_PDEATHSIG, SIGKILL);
+    limit(RLIMIT_CORE, 0);  // a crash leaves no core file
+    limit(RLIMIT_AS, iso.memory_bytes);
+    limit(RLIMIT_FSIZE, iso.file_bytes);
+    limit(RLIMIT_NOFILE, iso.open_files);
+    limit(RLIMIT_CPU, std::ceil(iso.timeout) * 4 + 10);  // all threads' CPU time; the wall clock is the parent's
+    signal(SIGPIPE, SIG_DFL);
+}
+
+/// This process's session id, and its children's (pid, session) from /proc.
+std::vector<pid_t> foreign_children() {
+    std::vector<pid_t> out;
+    const pid_t self = getpid(), session = getsid(0);
+    DIR* dir = opendir("/proc");
+    if (!dir) return out;
+    while (dirent* e = readdir(dir)) {
+        char* end = nullptr;
+        long pid = std::strtol(e->d_name, &end, 10);
+        if (*end != '\0' || pid <= 0) continue;
+        std::ifstream stat("/proc/" + std::string(e->d_name) + "/stat");
+        std::string line;
+        if (!std::getline(stat, line)) continue;
+        size_t close = line.rfind(')');  // the name may hold spaces and parentheses
+        if (close == std::string::npos) continue;
+        char state = 0;
+        long ppid = 0, pgrp = 0, sid = 0;
+        if (std::sscanf(line.c_str() + close + 1, " %c %ld %ld %ld", &state, &ppid, &pgrp, &sid) != 4)
+            continue;
+        if (ppid == self && sid != session) out.push_back(pid_t(pid));
+    }
+    closedir(dir);
+    return out;
+}
+
+std::string signal_name(int sig) {
+    return std::string(strsignal(sig)) + " (signal " + std::to_string(sig) + ")";
+}
+
 }  // namespace
+
+void kill_leftover_children() {
+    for (int round = 0; round < 50; ++round) {
+        std::vector<pid_t> left = foreign_children();
+        if (left.empty()) return;
+        for (pid_t p : left) {
+            kill(-p, SIGKILL);  // its group, if it leads one
+            kill(p, SIGKILL);
+        }
+        for (pid_t p : left)
+            while (waitpid(p, nullptr, 0) < 0 && errno == EINTR) {
+            }
+    }
+}
 
 TaskResult grade_task_isolated(const TaskSpec& spec, const GradeEnvironment& env,
                                double timeout_seconds) {
+    Isolation iso;
+    iso.timeout = timeout_seconds;
+    return grade_task_isolated(spec, env, iso);
+}
+
+TaskResult grade_task_isolated(const TaskSpec& spec, const GradeEnvironment& env,
+                               const Isolation& iso) {
+    // Orphans of the task (a setsid grandchild) become our children, so
+    // that kill_leftover_children finds them.
+    prctl(PR_SET_CHILD_SUBREAPER, 1);
+    std::vector<std::string> command;
+    if (iso.runner) {
+        command = iso.sandbox_prefix;
+        for (const std::string& a : iso.runner(spec))
+            command.push_back(a);
+    }
     int fds[2];
-    if (pipe(fds) != 0) throw std::runtime_error(std::string("pipe: ") + std::strerror(errno));
+    if (pipe2(fds, O_CLOEXEC) != 0)
+        throw std::runtime_error(std::string("pipe: ") + std::strerror(errno));
     std::fflush(stdout);
     std::fflush(stderr);
     Timer timer;
     pid_t pid = fork();
     if (pid < 0) throw std::runtime_error(std::string("fork: ") + std::strerror(errno));
     if (pid == 0) {
-        // The child: grade, send, and leave without running the parent's atexit handlers.
         close(fds[0]);
-        rlimit no_core{0, 0};
-        setrlimit(RLIMIT_CORE, &no_core);  // a crashing submission leaves no core files behind
-        nlohmann::json message;
-        try {
-            message["result"] = task_to_json(grade_task(spec, env));
-        } catch (const InputError& e) {
-            message["input_error"] = e.what();
-        } catch (const std::exception& e) {
-            message["error"] = e.what();
+        enter_child(iso);
+        if (!command.empty()) {
+            // The runner reads its task from the arguments and writes its log to fd 3.
+            if (dup2(fds[1], 3) < 0) _exit(127);
+            std::vector<char*> argv;
+            for (std::string& a : command)
+                argv.push_back(a.data());
+            argv.push_back(nullptr);
+            execvp(argv[0], argv.data());
+            _exit(127);
         }
-        write_all(fds[1], message.dump());
+        std::string log;
+        try {
+            Stages recording = start_recording(env.student);
+            GradeEnvironment child{recording, env.reference, env.seed, env.threads,
+                                   env.assets_dir, "", ""};
+            grade_task(spec, child);
+        } catch (...) {
+            // The parent finds the same problem when it replays.
+        }
+        log = finish_recording();
+        write_all(fds[1], log);
         close(fds[1]);
         _exit(0);
     }
 
     close(fds[1]);
+    // Read until the runner exits (not until end of file: a process it
+    // started may hold the pipe open), the deadline, or the size limit.
     std::string received;
-    bool timed_out = false;
-    char buffer[65536];
-    for (;;) {
-        double left = timeout_seconds - timer.seconds();
-        if (left <= 0) {
+    bool timed_out = false, too_large = false, exited = false;
+    int status = 0;
+    std::vector<char> buffer(1 << 20);
+    auto drain = [&](int wait_ms) {
+        pollfd p{fds[0], POLLIN, 0};
+        if (poll(&p, 1, wait_ms) <= 0) return false;
+        ssize_t n = read(fds[0], buffer.data(), buffer.size());
+        if (n <= 0) {  // end of file: wait for the exit without spinning
+            if (wait_ms > 0) usleep(useconds_t(wait_ms) * 1000);
+            return false;
+        }
+        if (double(received.size()) + double(n) > iso.max_log_bytes) {
+            too_large = true;
+            return false;
+        }
+        received.append(buffer.data(), size_t(n));
+        return true;
+    };
+    while (!too_large) {
+        if (timer.seconds() > iso.timeout) {
             timed_out = true;
             break;
         }
-        pollfd p{fds[0], POLLIN, 0};
-        int ready = poll(&p, 1, int(std::min(left, 3600.0) * 1000) + 1);
-        if (ready < 0 && errno == EINTR) continue;
-        if (ready <= 0) continue;  // the deadline is checked at the top
-        ssize_t n = read(fds[0], buffer, sizeof buffer);
-        if (n < 0 && errno == EINTR) continue;
-        if (n <= 0) break;  // end of file: the child has finished or died
-        received.append(buffer, size_t(n));
+        pid_t w = waitpid(pid, &status, WNOHANG);
+        if (w == pid) {
+            exited = true;
+            while (drain(0)) {
+            }
+            break;
+        }
+        drain(20);
     }
     close(fds[0]);
-    if (timed_out) kill(pid, SIGKILL);
-    int status = 0;
-    while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    if (!exited) {
+        kill(-pid, SIGKILL), kill(pid, SIGKILL);
+        while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+        }
     }
+    kill(-pid, SIGKILL);
+    kill_leftover_children();
     double seconds = timer.seconds();
 
     if (timed_out) {
         char msg[128];
         std::snprintf(msg, sizeof msg, "timed out after %.0f s (an endless loop?) and was stopped",
-                      timeout_seconds);
+                      iso.timeout);
         return failed(spec, msg, seconds);
     }
+    if (too_large)
+        return failed(spec,
+                      "the runner's output exceeded " + std::to_string(long(iso.max_log_bytes / 1e6)) +
+                          " MB and was stopped",
+                      seconds);
     if (WIFSIGNALED(status)) {
         int sig = WTERMSIG(status);
-        return failed(spec,
-                      std::string("the student code crashed: ") + strsignal(sig) + " (signal " +
-                          std::to_string(sig) + ")",
-                      seconds);
+        std::string why = sig == SIGXCPU ? " (the CPU time limit)" : "";
+        return failed(spec, "the student code crashed: " + signal_name(sig) + why, seconds);
     }
-    nlohmann::json message;
-    try {
-        message = nlohmann::json::parse(received);
-    } catch (const nlohmann::json::exception&) {
+    const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    // bwrap exits with 128 + the signal that killed the runner.
+    if (!iso.sandbox_prefix.empty() && code > 128 && code < 128 + 32 && received.empty())
+        return failed(spec, "the student code crashed: " + signal_name(code - 128), seconds);
+    if (code == 127 && received.empty())
+        return failed(spec, "the runner for this task could not be started (is it built?)", seconds);
+    if (code != 0 || received.empty() || uint8_t(received.back()) != 255)
         return failed(spec,
                       "the student code ended the grading process (exit status " +
-                          std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + ")",
+                          std::to_string(code) + ")",
                       seconds);
+    TaskResult r;
+    try {
+        Stages student = start_replay(std::move(received));
+        GradeEnvironment e{student, env.reference, env.seed, env.threads,
+                           env.assets_dir, env.cache_dir, env.out_dir};
+        r = grade_task(spec, e);
+    } catch (...) {
+        stop_replay();
+        throw;  // InputError: the grader's own problem, found again by the grader
     }
-    if (message.contains("input_error"))
-        throw InputError(message["input_error"].get<std::string>());
-    if (message.contains("error")) throw std::runtime_error(message["error"].get<std::string>());
-    return task_from_json(message.at("result"));
+    stop_replay();
+    r.seconds = seconds;
+    return r;
 }
 
 }  // namespace pt

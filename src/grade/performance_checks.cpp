@@ -30,6 +30,7 @@
 #include "grade/params.h"
 #include "grade/performance_checks.h"
 #include "grade/random_inputs.h"
+#include "grade/student_calls.h"
 #include "grade/tree_quality.h"
 
 namespace pt {
@@ -71,7 +72,7 @@ TaskResult check_bvh_performance(const TaskSpec& spec, const GradeEnvironment& e
         rays.begin(),
         rays.begin() + std::min<long>(long(rays.size()), param(spec, "linear_rays", 200)));
     const int repeats = param(spec, "repeats", 3);
-    AcceleratorMeasurement s = measure_accelerator(*student, rays, repeats);
+    AcceleratorMeasurement s = student_measurement(*student, rays, repeats);
     AcceleratorMeasurement l = measure_accelerator(*linear, linear_rays, repeats);
     const double student_per_ray = s.seconds / double(rays.size());
     const double linear_per_ray = l.seconds / double(linear_rays.size());

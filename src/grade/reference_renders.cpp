@@ -5,9 +5,14 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <mutex>
 
+#include <nettle/sha2.h>
+
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "image/image_io.h"
 
@@ -101,6 +106,35 @@ void write_atomically(const Image& image, const std::string& path) {
     if (ec) std::filesystem::remove(tmp, ec);
 }
 
+/// SHA-256 (nettle) of the entry's three images, in hex: recorded when the
+/// entry is made, checked whenever it is read, so that a damaged or
+/// tampered entry is rendered again.
+std::string content_hash(const Image& mean, const Image& variance, const Image& witness) {
+    sha256_ctx ctx;
+    sha256_init(&ctx);
+    for (const Image* image : {&mean, &variance, &witness}) {
+        const int32_t size[2] = {image->width(), image->height()};
+        sha256_update(&ctx, sizeof size, reinterpret_cast<const uint8_t*>(size));
+        sha256_update(&ctx, image->data().size() * sizeof(float),
+                      reinterpret_cast<const uint8_t*>(image->data().data()));
+    }
+    uint8_t digest[SHA256_DIGEST_SIZE];
+    sha256_digest(&ctx, sizeof digest, digest);
+    std::string hex;
+    char byte[3];
+    for (uint8_t b : digest) {
+        std::snprintf(byte, sizeof byte, "%02x", b);
+        hex += byte;
+    }
+    return hex;
+}
+
+std::string read_text(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    return text.substr(0, 64);
+}
+
 std::string stem_of(const std::string& path) {
     return std::filesystem::path(path).stem().string();
 }
@@ -123,7 +157,8 @@ Converged converged_from_cache(const Scene& scene, const ImageCase& c, const Gra
     std::optional<Image> cached_variance = try_read(base + "-variance.pfm");
     if (cached && cached_variance && cached_witness && identical(*cached_witness, witness) &&
         cached->width() == c.width && cached->height() == c.height &&
-        cached_variance->width() == c.width && cached_variance->height() == c.height) {
+        cached_variance->width() == c.width && cached_variance->height() == c.height &&
+        read_text(base + ".sha256") == content_hash(*cached, *cached_variance, *cached_witness)) {
         const int batches = std::min(kBatches, c.converged_spp);
         *from_cache = true;
         return Converged{*cached, *cached_variance, batches * (c.converged_spp / batches)};
@@ -133,6 +168,8 @@ Converged converged_from_cache(const Scene& scene, const ImageCase& c, const Gra
     write_atomically(conv.mean, base + ".pfm");
     write_atomically(conv.sample_variance, base + "-variance.pfm");
     write_atomically(witness, base + "-witness.pfm");
+    // The hash last: a reader that finds it matching finds the images complete.
+    write_file_atomically(base + ".sha256", content_hash(conv.mean, conv.sample_variance, witness));
     return conv;
 }
 

@@ -49,6 +49,8 @@ const Slot kSlots[] = {
 
 #undef PT_FUNCTION_SLOT
 
+}  // namespace
+
 /// The reference's one_bounce_radiance, but calling the estimators of the
 /// context's stage table: the reference's own calls its estimators
 /// directly, so a student estimator switched into the table alone would
@@ -66,8 +68,6 @@ Color one_bounce_through_table(const RenderContext& context, const Ray& ray,
     }
     return Color(0);
 }
-
-}  // namespace
 
 std::vector<std::string> known_slots() {
     std::vector<std::string> names;

@@ -26,6 +26,11 @@ namespace pt {
 Stages mix_stages(const Stages& reference, const Stages& student,
                   const std::vector<std::string>& slots, const std::string& where);
 
+/// The reference's one_bounce_radiance, calling the estimators of the
+/// context's stage table (the reference's own calls its estimators directly).
+Color one_bounce_through_table(const RenderContext& context, const Ray& ray,
+                               const SurfaceInteraction& isect, Rng& rng);
+
 /// The slot names mix_stages accepts, for error messages and docs.
 std::vector<std::string> known_slots();
 

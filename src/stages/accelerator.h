@@ -21,7 +21,8 @@ struct AcceleratorInfo {
     std::string name;        ///< "linear", "bvh-sah", ...
     uint64_t nodes = 0;      ///< BVH nodes; 0 for the linear scan
     int depth = 0;           ///< deepest leaf; 0 for the linear scan
-    uint64_t bytes = 0;      ///< memory for nodes and primitive references
+    uint64_t bytes = 0;      ///< all memory the accelerator holds (with per-primitive triangle copies)
+    uint64_t tree_bytes = 0;  ///< nodes (cells) and primitive references only
 };
 
 class Accelerator {

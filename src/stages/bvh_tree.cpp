@@ -153,7 +153,7 @@ class TreeBvh final : public Accelerator, public InspectableBvh {
     bool occluded(const Ray& ray) const override {
         return tree_.root && functions_.bvh_has_intersection(tree_, ray, tree_.root.get());
     }
-    AcceleratorInfo info() const override { return {"bvh-tree", nodes_, depth_, bytes_}; }
+    AcceleratorInfo info() const override { return {"bvh-tree", nodes_, depth_, bytes_, bytes_}; }
 
     std::optional<BvhNodeView> node_at(const std::string& path) const override {
         const BVHNode* node = tree_.root.get();

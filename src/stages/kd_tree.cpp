@@ -232,8 +232,8 @@ class KdTree final : public Accelerator {
                 stack.push_back({nodes_[i].offset, d + 1});
             }
         }
-        return {"kdtree", nodes_.size(), depth,
-                nodes_.size() * sizeof(KdNode) + refs_.size() * sizeof(uint32_t)};
+        uint64_t bytes = nodes_.size() * sizeof(KdNode) + refs_.size() * sizeof(uint32_t);
+        return {"kdtree", nodes_.size(), depth, bytes, bytes};
     }
 
   private:

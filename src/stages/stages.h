@@ -44,6 +44,9 @@ struct AcceleratorSettings {
     AccelKind kind = AccelKind::bvh;  ///< `--accel`
     std::string split = "sah";  ///< sah | median | middle
     int max_leaf = 4;          ///< at most this many primitives per leaf when a split is possible
+    /// `--bvh-width`: children per node of the reference BVH: 2 (the binary
+    /// tree) or 4 (collapsed, SSE; stages/bvh_wide.h). The student's tree is binary.
+    int width = 4;
 };
 
 using BuildAcceleratorFn = std::unique_ptr<Accelerator> (*)(const Scene& scene,

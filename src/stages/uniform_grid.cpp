@@ -118,8 +118,8 @@ class UniformGrid final : public Accelerator {
     }
 
     AcceleratorInfo info() const override {
-        return {"grid", uint64_t(start_.empty() ? 0 : start_.size() - 1), 0,
-                start_.size() * sizeof(uint32_t) + refs_.size() * sizeof(uint32_t)};
+        uint64_t bytes = start_.size() * sizeof(uint32_t) + refs_.size() * sizeof(uint32_t);
+        return {"grid", uint64_t(start_.empty() ? 0 : start_.size() - 1), 0, bytes, bytes};
     }
 
   private:

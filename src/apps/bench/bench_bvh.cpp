@@ -23,6 +23,8 @@
 #include "render/integrators.h"
 #include "stages/render_context.h"
 #include "stages/effects.h"
+#include "stages/kd_tree.h"
+#include "stages/uniform_grid.h"
 #include "scene/scene_loader.h"
 #include "stages/bvh.h"
 #include "stages/stages.h"
@@ -78,8 +80,11 @@ std::optional<Hit> reference_triangle_through_table(const Triangle& t, const Ray
 struct KernelRow {
     std::string kind;  ///< primary, diffuse, shadow
     uint64_t rays = 0;
-    double mrays = 0;             ///< reference BVH, inlined triangle test
+    double mrays = 0;             ///< reference BVH (default width), inlined triangle test
     double mrays_table = 0;       ///< reference BVH, triangle test through the stage table
+    double mrays_binary = 0;      ///< binary reference BVH (--bvh-width 2)
+    double mrays_kdtree = 0;      ///< --accel kdtree
+    double mrays_grid = 0;        ///< --accel grid
     double nodes = 0, tests = 0;  ///< per ray
     double embree_mrays = 0;
     double agreement = -1;  ///< fraction of closest hits on the same triangle as Embree's
@@ -96,6 +101,9 @@ struct SceneResult {
     int threads = 1;
     std::vector<KernelRow> kernels;
     double embree_build_seconds = -1;
+    /// Single-thread builds of the other structures, and their memory.
+    double binary_build_seconds = 0, kdtree_build_seconds = 0, grid_build_seconds = 0;
+    uint64_t kdtree_bytes = 0, grid_bytes = 0;
 };
 
 double per_ray(uint64_t n, const RayCounters& c) {
@@ -105,14 +113,34 @@ double mrays(const RayCounters& c, double seconds) {
     return seconds > 0 ? c.rays() / seconds * 1e-6 : 0.0;
 }
 
+/// Builds `make()`'s accelerator, timing it.
+template <class Make>
+std::unique_ptr<Accelerator> timed_build(Make make, double* seconds) {
+    CpuTimer timer;  // one thread: its CPU time, robust to other processes
+    std::unique_ptr<Accelerator> a = make();
+    *seconds = timer.seconds();
+    return a;
+}
+
 std::vector<KernelRow> time_kernels(const Scene& full_scene, int width, int height, double seconds,
-                                    double* embree_build_seconds) {
+                                    SceneResult& result) {
+    double* embree_build_seconds = &result.embree_build_seconds;
     Scene scene = triangles_only(full_scene);
     AcceleratorSettings settings;
     IntersectStage reference{reference::intersect_triangle, reference::intersect_sphere};
     IntersectStage table{reference_triangle_through_table, reference::intersect_sphere};
     std::unique_ptr<Accelerator> bvh = make_reference_bvh(scene, reference, settings);
     std::unique_ptr<Accelerator> bvh_table = make_reference_bvh(scene, table, settings);
+    AcceleratorSettings binary_settings;
+    binary_settings.width = 2;
+    std::unique_ptr<Accelerator> binary = timed_build(
+        [&] { return make_reference_bvh(scene, reference, binary_settings); }, &result.binary_build_seconds);
+    std::unique_ptr<Accelerator> kdtree =
+        timed_build([&] { return make_kd_tree(scene, reference); }, &result.kdtree_build_seconds);
+    std::unique_ptr<Accelerator> grid =
+        timed_build([&] { return make_uniform_grid(scene, reference); }, &result.grid_build_seconds);
+    result.kdtree_bytes = kdtree->info().tree_bytes;
+    result.grid_bytes = grid->info().tree_bytes;
     std::unique_ptr<EmbreeKernel> embree;
     if (EmbreeKernel::available()) {
         embree = std::make_unique<EmbreeKernel>(scene);
@@ -137,13 +165,19 @@ std::vector<KernelRow> time_kernels(const Scene& full_scene, int width, int heig
         row.tests = double(first.counters.primitive_tests) / double(rays.size());
         std::vector<std::function<double()>> passes = {
             [&] { return trace_pass(*bvh, rays, any_hit).seconds; },
-            [&] { return trace_pass(*bvh_table, rays, any_hit).seconds; }};
+            [&] { return trace_pass(*bvh_table, rays, any_hit).seconds; },
+            [&] { return trace_pass(*binary, rays, any_hit).seconds; },
+            [&] { return trace_pass(*kdtree, rays, any_hit).seconds; },
+            [&] { return trace_pass(*grid, rays, any_hit).seconds; }};
         if (embree) passes.push_back([&] { return embree->trace(rays, any_hit).seconds; });
         std::vector<double> best = best_times(passes, seconds);
         row.mrays = rays.size() / best[0] * 1e-6;
         row.mrays_table = rays.size() / best[1] * 1e-6;
+        row.mrays_binary = rays.size() / best[2] * 1e-6;
+        row.mrays_kdtree = rays.size() / best[3] * 1e-6;
+        row.mrays_grid = rays.size() / best[4] * 1e-6;
         if (embree) {
-            row.embree_mrays = rays.size() / best[2] * 1e-6;
+            row.embree_mrays = rays.size() / best[5] * 1e-6;
             if (!any_hit) {
                 std::vector<uint32_t> theirs = embree->closest_triangles(rays);
                 uint64_t same = 0;
@@ -194,7 +228,7 @@ SceneResult measure_scene(const std::string& path, const BvhOptions& o) {
 
     std::cerr << "bench bvh: " << r.name << ": building the BVH\n";
     AcceleratorSettings bvh_settings;
-    Timer timer;
+    CpuTimer timer;  // the build's CPU time (one thread), robust to other processes
     std::unique_ptr<Accelerator> bvh = build_accelerator(scene, stages, bvh_settings);
     r.build_seconds = timer.seconds();
     r.info = bvh->info();
@@ -217,7 +251,7 @@ SceneResult measure_scene(const std::string& path, const BvhOptions& o) {
     }
     if (o.kernels) {
         std::cerr << "bench bvh: " << r.name << ": timing the ray kernels\n";
-        r.kernels = time_kernels(scene, width, height, o.kernel_seconds, &r.embree_build_seconds);
+        r.kernels = time_kernels(scene, width, height, o.kernel_seconds, r);
     }
     return r;
 }
@@ -254,7 +288,7 @@ void print_tables(const std::vector<SceneResult>& results, int width, int height
         main.add({r.name, r.integrator, count(r.triangles), count(r.spheres),
                   fixed(r.build_seconds * 1e3, 1), count(r.info.nodes),
                   std::to_string(r.info.depth),
-                  fixed(double(r.info.nodes * 32 + prims * 4) / prims, 1),
+                  fixed(double(r.info.tree_bytes) / prims, 1),
                   fixed(double(r.info.bytes) / prims, 1), linear_cell(r),
                   fixed(r.with_bvh.seconds, 4), speedup, fixed(mrays(c, r.with_bvh.seconds), 2),
                   fixed(per_ray(c.nodes_visited, c), 1), fixed(per_ray(c.primitive_tests, c), 2)});
@@ -279,8 +313,9 @@ void print_tables(const std::vector<SceneResult>& results, int width, int height
               << (embree ? EmbreeKernel::version() + " beside the reference BVH"
                          : "built without Embree")
               << ")\n\n";
-    std::vector<std::string> header = {
-        "scene", "rays", "count", "BVH Mrays/s", "via table Mrays/s", "nodes/ray", "tests/ray"};
+    std::vector<std::string> header = {"scene",         "rays",          "count",         "BVH4 Mrays/s",
+                                       "BVH2 Mrays/s",  "kd-tree Mrays/s", "grid Mrays/s", "via table Mrays/s",
+                                       "nodes/ray",     "tests/ray"};
     if (embree) {
         for (const char* h : {"Embree Mrays/s", "BVH / Embree", "same hit"})
             header.push_back(h);
@@ -292,6 +327,9 @@ void print_tables(const std::vector<SceneResult>& results, int width, int height
                                               row.kind,
                                               count(row.rays),
                                               fixed(row.mrays, 2),
+                                              fixed(row.mrays_binary, 2),
+                                              fixed(row.mrays_kdtree, 2),
+                                              fixed(row.mrays_grid, 2),
                                               fixed(row.mrays_table, 2),
                                               fixed(row.nodes, 1),
                                               fixed(row.tests, 2)};
@@ -305,19 +343,27 @@ void print_tables(const std::vector<SceneResult>& results, int width, int height
         }
     }
     std::cout << k.markdown();
-    if (embree) {
-        std::cout << "\n### Builds (1 thread)\n\n";
-        Table b({"scene", "triangles", "BVH build ms", "BVH Mtri/s", "Embree build ms",
-                 "Embree Mtri/s"});
-        for (const SceneResult& r : results) {
-            if (r.embree_build_seconds < 0) continue;
-            b.add({r.name, count(r.triangles), fixed(r.build_seconds * 1e3, 1),
-                   fixed(r.triangles / r.build_seconds * 1e-6, 2),
-                   fixed(r.embree_build_seconds * 1e3, 1),
-                   fixed(r.triangles / r.embree_build_seconds * 1e-6, 2)});
-        }
-        std::cout << b.markdown();
+    std::cout << "\n### Builds (1 thread; M tri/s = million triangles per second) and memory\n\n";
+    std::vector<std::string> build_header = {"scene", "triangles", "BVH4 Mtri/s", "BVH2 Mtri/s",
+                                             "kd-tree Mtri/s", "grid Mtri/s", "kd-tree B/tri", "grid B/tri"};
+    if (embree) build_header.push_back("Embree Mtri/s");
+    Table b(build_header, 2);
+    auto rate = [](uint64_t n, double s) { return s > 0 ? fixed(double(n) / s * 1e-6, 2) : std::string("-"); };
+    for (const SceneResult& r : results) {
+        if (r.kernels.empty()) continue;
+        uint64_t n = std::max<uint64_t>(1, r.triangles);
+        std::vector<std::string> cells = {r.name,
+                                          count(r.triangles),
+                                          rate(r.triangles, r.build_seconds),
+                                          rate(r.triangles, r.binary_build_seconds),
+                                          rate(r.triangles, r.kdtree_build_seconds),
+                                          rate(r.triangles, r.grid_build_seconds),
+                                          fixed(double(r.kdtree_bytes) / n, 1),
+                                          fixed(double(r.grid_bytes) / n, 1)};
+        if (embree) cells.push_back(rate(r.triangles, r.embree_build_seconds));
+        b.add(cells);
     }
+    std::cout << b.markdown();
 }
 
 void write_json(const std::string& path, const std::vector<SceneResult>& results, int width,
@@ -352,10 +398,20 @@ void write_json(const std::string& path, const std::vector<SceneResult>& results
             s["threaded_mrays_per_second"] = mrays(r.threaded.counters, r.threaded.seconds);
         }
         if (r.embree_build_seconds >= 0) s["embree_build_seconds"] = r.embree_build_seconds;
+        if (!r.kernels.empty()) {
+            s["binary_build_seconds"] = r.binary_build_seconds;
+            s["kdtree_build_seconds"] = r.kdtree_build_seconds;
+            s["grid_build_seconds"] = r.grid_build_seconds;
+            s["kdtree_bytes"] = r.kdtree_bytes;
+            s["grid_bytes"] = r.grid_bytes;
+        }
         for (const KernelRow& k : r.kernels) {
             nlohmann::json kj = {{"rays", k.rays},
                                  {"mrays_per_second", k.mrays},
                                  {"via_table_mrays_per_second", k.mrays_table},
+                                 {"binary_mrays_per_second", k.mrays_binary},
+                                 {"kdtree_mrays_per_second", k.mrays_kdtree},
+                                 {"grid_mrays_per_second", k.mrays_grid},
                                  {"nodes_per_ray", k.nodes},
                                  {"tests_per_ray", k.tests}};
             if (k.embree_mrays > 0) kj["embree_mrays_per_second"] = k.embree_mrays;
@@ -442,9 +498,11 @@ int run_bvh(const std::vector<std::string>& raw) {
 }
 
 const BenchCommandRegistration kRegistration({"bvh", kUsage,
-                                              "timing table with and without the BVH, ray kernels "
-                                              "against Embree (when built with it)",
+                                              "timing table with and without the BVH; ray kernels and builds of "
+                                              "BVH4, BVH2, kd-tree, grid and Embree (when built with it)",
                                               run_bvh});
+// `bench accel` (issue 17's name for the comparison of every structure) is the same command.
+const BenchCommandRegistration kAccelAlias({"accel", kUsage, "the same as bench bvh", run_bvh});
 
 }  // namespace
 }  // namespace pt::bench

@@ -109,7 +109,7 @@ SizeResult measure(uint64_t size, int width, int height, double kernel_seconds) 
     std::unique_ptr<Accelerator> bvh = make_reference_bvh(scene, reference, settings);
     r.build_seconds = timer.seconds();
     r.info = bvh->info();
-    r.tree_bytes_per_triangle = double(r.info.nodes * 32 + r.triangles * 4) / double(r.triangles);
+    r.tree_bytes_per_triangle = double(r.info.tree_bytes) / double(r.triangles);
 
     std::unique_ptr<EmbreeKernel> embree;
     if (EmbreeKernel::available()) {

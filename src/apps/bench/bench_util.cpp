@@ -236,7 +236,9 @@ RaySets make_ray_sets(const Scene& scene, const Accelerator& accel, int width, i
 KernelPass trace_pass(const Accelerator& accel, const std::vector<Ray>& rays, bool any_hit) {
     KernelPass pass;
     RayCounters before = thread_counters();
-    Timer timer;
+    // CPU time, not wall-clock: on a shared machine the kernel's own cost
+    // (the pass runs on this one thread; core/timer.h).
+    CpuTimer timer;
     uint64_t hits = 0;
     if (any_hit) {
         for (const Ray& r : rays)

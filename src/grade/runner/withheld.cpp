@@ -1,0 +1,105 @@
+// The reference functions a runner withholds (grade/runners.h): strong
+// definitions that replace the reference's, which the runner's engine
+// archive holds only as weak symbols (objcopy --weaken-symbol, see
+// src/CMakeLists.txt). Each is compiled in only when its PT_WITHHOLD_*
+// macro is defined for the runner. Calling one throws: student code that
+// calls the reference of the function it is graded on fails that task.
+#include <stdexcept>
+
+#include "stages/stages.h"
+
+namespace pt::reference {
+namespace {
+[[noreturn]] void withheld(const char* name) {
+    throw std::runtime_error(std::string("the reference ") + name +
+                             " is not available to the code it grades");
+}
+}  // namespace
+
+#ifdef PT_WITHHOLD_GENERATE_RAY
+Ray generate_ray(const Camera&, double, double, Vec2) { withheld("generate_ray"); }
+#endif
+#ifdef PT_WITHHOLD_RAYTRACE_PIXEL
+PixelResult raytrace_pixel(const RenderContext&, int, int) { withheld("raytrace_pixel"); }
+#endif
+#ifdef PT_WITHHOLD_INTERSECT_TRIANGLE
+std::optional<Hit> intersect_triangle(const Triangle&, const Ray&) { withheld("intersect_triangle"); }
+std::optional<Hit> intersect_triangle_watertight(const Triangle&, const Ray&) {
+    withheld("intersect_triangle_watertight");
+}
+#endif
+#ifdef PT_WITHHOLD_INTERSECT_SPHERE
+std::optional<Hit> intersect_sphere(const Sphere&, const Ray&) { withheld("intersect_sphere"); }
+#endif
+#ifdef PT_WITHHOLD_CONSTRUCT_BVH
+std::unique_ptr<BVHNode> construct_bvh(std::vector<BVHPrimitive>&, size_t, size_t, size_t) {
+    withheld("construct_bvh");
+}
+#endif
+#ifdef PT_WITHHOLD_BBOX_INTERSECT
+bool bbox_intersect(const BBox&, const Ray&, double&, double&) { withheld("bbox_intersect"); }
+#endif
+#ifdef PT_WITHHOLD_BVH_INTERSECT
+std::optional<Hit> bvh_intersect(const BVHTree&, const Ray&, const BVHNode*) {
+    withheld("bvh_intersect");
+}
+#endif
+#ifdef PT_WITHHOLD_BVH_HAS_INTERSECTION
+bool bvh_has_intersection(const BVHTree&, const Ray&, const BVHNode*) {
+    withheld("bvh_has_intersection");
+}
+#endif
+#ifdef PT_WITHHOLD_HAS_CONVERGED
+bool has_converged(const PixelStatistics&, double) { withheld("has_converged"); }
+#endif
+#ifdef PT_WITHHOLD_DIFFUSE_F
+Color diffuse_f(const Color&, const Vec3&, const Vec3&) { withheld("diffuse_f"); }
+#endif
+#ifdef PT_WITHHOLD_DIFFUSE_SAMPLE_F
+BSDFSample diffuse_sample_f(const Color&, const Vec3&, Vec2) { withheld("diffuse_sample_f"); }
+#endif
+#ifdef PT_WITHHOLD_ZERO_BOUNCE
+Color zero_bounce_radiance(const RenderContext&, const Ray&, const SurfaceInteraction&) {
+    withheld("zero_bounce_radiance");
+}
+#endif
+#ifdef PT_WITHHOLD_HEMISPHERE
+Color estimate_direct_lighting_hemisphere(const RenderContext&, const Ray&,
+                                          const SurfaceInteraction&, Rng&) {
+    withheld("estimate_direct_lighting_hemisphere");
+}
+#endif
+#ifdef PT_WITHHOLD_IMPORTANCE
+Color estimate_direct_lighting_importance(const RenderContext&, const Ray&,
+                                          const SurfaceInteraction&, Rng&) {
+    withheld("estimate_direct_lighting_importance");
+}
+#endif
+#ifdef PT_WITHHOLD_ONE_BOUNCE
+Color one_bounce_radiance(const RenderContext&, const Ray&, const SurfaceInteraction&, Rng&) {
+    withheld("one_bounce_radiance");
+}
+#endif
+#ifdef PT_WITHHOLD_MIS_HEURISTICS
+double power_heuristic(double, double, double, double) { withheld("power_heuristic"); }
+double balance_heuristic(double, double, double, double) { withheld("balance_heuristic"); }
+#endif
+#ifdef PT_WITHHOLD_ESTIMATE_MIS
+Color estimate_direct_lighting_mis(const RenderContext&, const Ray&, const SurfaceInteraction&,
+                                   Rng&) {
+    withheld("estimate_direct_lighting_mis");
+}
+#endif
+#ifdef PT_WITHHOLD_AT_LEAST_ONE_BOUNCE
+Color at_least_one_bounce_radiance(const RenderContext&, const Ray&, const SurfaceInteraction&,
+                                   const Color&, Rng&) {
+    withheld("at_least_one_bounce_radiance");
+}
+#endif
+#ifdef PT_WITHHOLD_EST_RADIANCE
+Color est_radiance_global_illumination(const RenderContext&, const Ray&, Rng&) {
+    withheld("est_radiance_global_illumination");
+}
+#endif
+
+}  // namespace pt::reference

@@ -1,0 +1,68 @@
+#include "grade/sandbox.h"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <filesystem>
+
+namespace pt {
+namespace {
+
+/// Runs `argv` with its output discarded; true when it exits with 0.
+bool runs(const std::vector<std::string>& argv) {
+    pid_t pid = fork();
+    if (pid < 0) return false;
+    if (pid == 0) {
+        std::vector<char*> a;
+        for (const std::string& s : argv)
+            a.push_back(const_cast<char*>(s.c_str()));
+        a.push_back(nullptr);
+        freopen("/dev/null", "w", stdout);
+        freopen("/dev/null", "w", stderr);
+        execvp(a[0], a.data());
+        _exit(127);
+    }
+    int status = 0;
+    while (waitpid(pid, &status, 0) < 0) {
+    }
+    return WIFEXITED(status) && WEXITSTATUS(status) == 0;
+}
+
+}  // namespace
+
+Sandbox make_sandbox(const std::vector<std::string>& readable, bool use_bwrap) {
+    Sandbox s;
+    const std::string limits = "setrlimit (address space, CPU, file size, open files), own session "
+                               "and process group, killed with every leftover process after each task";
+    if (!use_bwrap) {
+        s.description = limits + " (bubblewrap switched off: --no-sandbox)";
+        return s;
+    }
+    std::vector<std::string> p = {"bwrap", "--unshare-pid", "--unshare-net", "--unshare-ipc",
+                                  "--unshare-uts", "--die-with-parent", "--ro-bind", "/usr",
+                                  "/usr", "--ro-bind-try", "/lib", "/lib", "--ro-bind-try",
+                                  "/lib64", "/lib64", "--ro-bind-try", "/bin", "/bin",
+                                  "--ro-bind-try", "/etc/ld.so.cache", "/etc/ld.so.cache",
+                                  "--proc", "/proc", "--dev", "/dev", "--tmpfs", "/tmp",
+                                  "--chdir", "/tmp"};
+    for (const std::string& r : readable) {
+        std::error_code ec;
+        std::string path = std::filesystem::weakly_canonical(r, ec).string();
+        if (ec || path.empty()) continue;
+        p.insert(p.end(), {"--ro-bind", path, path});
+    }
+    std::vector<std::string> probe = p;
+    probe.insert(probe.end(), {"--", "/bin/true"});
+    if (!runs(probe)) {
+        s.description = limits + " (bubblewrap could not start here)";
+        return s;
+    }
+    p.push_back("--");
+    s.prefix = p;
+    s.description = "bubblewrap (new PID, network, IPC and UTS namespaces; read-only system and "
+                    "inputs; empty /tmp; no cache, reports or sources) and " +
+                    limits;
+    return s;
+}
+
+}  // namespace pt

@@ -1,0 +1,25 @@
+// The sandbox of a runner: bubblewrap (Debian package bubblewrap) with a
+// new PID, network, IPC and UTS namespace, the system and the grading
+// inputs bound read-only, an empty writable /tmp, and --die-with-parent.
+// It sees neither the reference cache nor the reports nor the student's
+// sources. Where bwrap cannot run (no user namespaces), the runner runs
+// with setrlimit and its own process group only (isolation.h), and the
+// report says so.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace pt {
+
+struct Sandbox {
+    std::vector<std::string> prefix;  ///< the bwrap command to put before the runner's; empty: none
+    std::string description;          ///< for the report: which isolation is used
+};
+
+/// A bwrap sandbox that can read `readable` (folders or files), if bwrap
+/// runs here (tried once, with /bin/true); otherwise an empty prefix and a
+/// description saying why. `use_bwrap` false: the fallback on purpose.
+Sandbox make_sandbox(const std::vector<std::string>& readable, bool use_bwrap);
+
+}  // namespace pt
