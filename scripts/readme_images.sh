@@ -30,6 +30,9 @@ threads=$(nproc)
 # NAME|pathtracer arguments (as in the README and docs/global.md), scene last.
 images=(
   "demo.png|-r 320 240 -s 256 -m 5 assets/scenes/cbox_spheres.json"
+  "media_fog.png|-r 200 200 -s 64 -m 8 assets/scenes/cbox_fog.json"
+  "media_milk.png|-r 200 200 -s 64 -m 32 assets/scenes/cbox_milk.json"
+  "media_cloud.png|-r 256 144 -s 32 -m 16 assets/scenes/cloud.json"
   "materials.png|-r 384 192 -s 256 -l 4 -m 8 assets/scenes/materials.json"
   "materials_dof.png|-r 384 192 -s 256 -l 4 -m 8 -b 0.08 -d 4.2 assets/scenes/materials.json"
   "whitted.png|-r 320 240 -s 16 assets/scenes/whitted.json"

@@ -73,10 +73,10 @@ std::vector<FlagSpec> flag_table() {
         {{"--exposure"}, 1, [](Options& o, S f, V v) { o.display.exposure = parse_real_number(f, v[0], -64, 64); }},
         {{"--accel"}, 1, [](Options& o, S f, V v) { o.accelerator.kind = parse_accel_kind(v[0], f); }},
         {{"--integrator"}, 1, [](Options& o, S f, V v) {
-             std::string k = one_of(f, v[0], {"auto", "normals", "depth", "whitted", "direct", "path", "pm", "sppm"});
+             std::string k = one_of(f, v[0], {"auto", "normals", "depth", "whitted", "direct", "path", "pm", "sppm", "volpath"});
              for (IntegratorKind kind : {IntegratorKind::automatic, IntegratorKind::normals, IntegratorKind::depth,
                                          IntegratorKind::whitted, IntegratorKind::direct, IntegratorKind::path,
-                                         IntegratorKind::pm, IntegratorKind::sppm})
+                                         IntegratorKind::pm, IntegratorKind::sppm, IntegratorKind::volpath})
                  if (k == to_string(kind)) o.render.integrator = kind;
          }},
         {{"--student"}, 1, [](Options& o, S f, V v) { o.student = StageSet::parse(v[0], f); }},
@@ -231,7 +231,7 @@ std::string usage(const std::string& program, StageSet default_student) {
       << "  --exposure EV   scale the PNG's radiance by 2^EV before tone mapping   [0]\n"
       << "  --accel none|grid|kdtree|bvh|embree  acceleration structure (embree: only in\n"
       << "                  builds with -DPT_WITH_EMBREE=ON)                       [bvh]\n"
-      << "  --integrator auto|normals|depth|whitted|direct|path|pm|sppm            [auto]\n"
+      << "  --integrator auto|normals|depth|whitted|direct|path|pm|sppm|volpath    [auto]\n"
       << "  --photons N     pm: photons emitted for the global map                 [200000]\n"
       << "  --caustic-photons N  pm: photons emitted for the caustic map           [200000]\n"
       << "  --radius R      pm: fixed search radius (largest one with --knn); sppm: initial radius\n"
@@ -241,7 +241,7 @@ std::string usage(const std::string& program, StageSet default_student) {
       << "  --photon-view caustic|global  pm: show one photon map's radiance estimate\n"
       << "  --passes N, --photons-per-pass N  sppm: passes, photons traced per pass  [16, 100000]\n"
       << "  --alpha A       sppm: fraction of new photons kept per pass, in (0, 1)  [0.667]\n"
-      << "  --student LIST  stages with student code: camera,intersect,bvh,direct,global,adaptive,sampler,photon,\n"
+      << "  --student LIST  stages with student code: camera,intersect,bvh,direct,global,adaptive,sampler,photon,media,\n"
       << "                  all or none                                            [" << default_student.to_string() << "]\n"
       << "  --stats FILE.json  seconds per phase, rays, spp, BVH, effects\n"
       << "  -q              no progress bar\n"

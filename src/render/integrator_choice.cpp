@@ -3,6 +3,7 @@
 // (DESIGN.md "Effects"; the rules are in docs/global.md):
 //
 //   normals  nothing emits light
+//   volpath  the scene has a participating medium or a null surface
 //   path     `global` is a student stage (so that part4 runs the student's code)
 //   whitted  every light is a point or directional light, -m >= 1, and no
 //            diffuse interreflection is asked for (-m 1, or nothing
@@ -37,6 +38,9 @@ IntegratorKind choose_integrator(const Scene& scene, const Effects& effects,
     if (!scene.has_lights())
         return because(IntegratorKind::normals,
                        "nothing in the scene emits light, so normals are shown");
+    if (scene.has_media())
+        return because(IntegratorKind::volpath,
+                       "participating media or null boundaries: volume path tracing");
     if (student.contains(Stage::global))
         return because(IntegratorKind::path, "global is a student stage: the path tracer runs it");
     const int m = settings.max_depth;
@@ -63,6 +67,10 @@ IntegratorKind choose_integrator(const Scene& scene, const Effects& effects,
 
 std::string integrator_note(IntegratorKind kind, const Scene& scene,
                             const RenderSettings& settings) {
+    if (scene.has_media() && kind != IntegratorKind::volpath && kind != IntegratorKind::normals &&
+        kind != IntegratorKind::depth)
+        return std::string(to_string(kind)) + " ignores participating media (null surfaces count as bounces): "
+               "use --integrator volpath";
     if ((kind == IntegratorKind::pm || kind == IntegratorKind::sppm) && settings.max_depth != 1)
         return std::string(to_string(kind)) + " follows photon paths until Russian roulette ends them: -m " +
                std::to_string(settings.max_depth) + " is not used";
@@ -88,6 +96,8 @@ std::unique_ptr<Integrator> make_integrator(IntegratorKind kind) {
             return make_whitted_integrator();
         case IntegratorKind::path:
             return make_path_integrator();
+        case IntegratorKind::volpath:
+            return make_volpath_integrator();
         case IntegratorKind::pm:
             return make_pm_integrator();
         case IntegratorKind::sppm:

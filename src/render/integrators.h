@@ -24,6 +24,9 @@ std::unique_ptr<Integrator> make_direct_integrator();
 std::unique_ptr<Integrator> make_whitted_integrator();
 /// Path tracing through the global stage (stages/global.h): -m, -o, Russian roulette.
 std::unique_ptr<Integrator> make_path_integrator();
+/// Volume path tracing: the path tracer with participating media, free
+/// flights, phase functions and transmittance (render/volpath_integrator.cpp, Part 9).
+std::unique_ptr<Integrator> make_volpath_integrator();
 /// Photon mapping with a caustic and a global map and final gathering
 /// (render/pm_integrator.cpp); its maps are traced in prepare().
 std::unique_ptr<Integrator> make_pm_integrator();

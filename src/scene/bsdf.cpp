@@ -40,6 +40,7 @@ Color BSDF::f(const Vec3& wo, const Vec3& wi) const {
             return rough_dielectric_f(*material_, wo, wi);
         case MaterialType::mirror:
         case MaterialType::glass:
+        case MaterialType::null:
             break;  // deltas: f is zero for every given pair
     }
     return Color(0);
@@ -49,6 +50,11 @@ int BSDF::delta_lobes(const Vec3& wo, DeltaLobe lobes[2]) const {
     const Material& m = *material_;
     if (m.type == MaterialType::mirror) {
         lobes[0] = {Vec3(-wo.x, -wo.y, wo.z), m.reflectance, 1.0, 1.0};
+        return 1;
+    }
+    if (m.type == MaterialType::null) {
+        // No surface: the light goes on as if nothing were there.
+        lobes[0] = {-wo, Color(1.0), 1.0, 1.0};
         return 1;
     }
     if (m.type != MaterialType::glass) return 0;
@@ -89,6 +95,7 @@ BSDFSample BSDF::sample_f(const Vec3& wo, Vec2 u, double uc) const {
             return rough_dielectric_sample_f(*material_, wo, u, uc);
         case MaterialType::mirror:
         case MaterialType::glass:
+        case MaterialType::null:
             break;
     }
     // A delta: pick one lobe with its probability; f |cos| / pdf is then
@@ -122,6 +129,7 @@ double BSDF::pdf(const Vec3& wo, const Vec3& wi) const {
             return rough_dielectric_pdf(*material_, wo, wi);
         case MaterialType::mirror:
         case MaterialType::glass:
+        case MaterialType::null:
             break;
     }
     return 0.0;
@@ -130,7 +138,8 @@ double BSDF::pdf(const Vec3& wo, const Vec3& wi) const {
 bool BSDF::is_transmissive() const { return material_->type == MaterialType::rough_dielectric; }
 
 bool BSDF::is_delta() const {
-    return material_->type == MaterialType::mirror || material_->type == MaterialType::glass;
+    return material_->type == MaterialType::mirror || material_->type == MaterialType::glass ||
+           material_->type == MaterialType::null;
 }
 
 }  // namespace pt

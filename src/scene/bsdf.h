@@ -36,6 +36,9 @@
 //   rough_dielectric  rough glass (Walter et al. 2007): reflection and
 //               refraction through the facets, any of the three
 //               distributions; keeps the stored normal, like glass.
+//   null        no surface (a medium's invisible boundary): one delta lobe
+//               wi = -wo of weight 1. The path tracer counts crossing it as a
+//               bounce; the volume path tracer (Part 9) does not.
 //
 // One BSDF is built per hit, from the Material and the shading frame, by
 // RenderContext::bsdf_at (stages/render_context.h), which also decides on

@@ -20,6 +20,7 @@ enum class MaterialType {
     glass,    ///< smooth dielectric: ior, reflectance, transmittance
     microfacet,  ///< rough conductor (GGX, Beckmann or Blinn-Phong; Smith): roughness, eta, k
     rough_dielectric,  ///< rough glass (Walter et al. 2007): ior, roughness, reflectance, transmittance
+    null,  ///< no surface: light passes straight through (the invisible boundary of a medium)
 };
 
 struct Material {
@@ -37,6 +38,9 @@ struct Material {
     double exponent = 100;                  ///< Blinn-Phong exponent e >= 0 (distribution blinn_phong)
     Color eta{1.66, 0.88, 0.52};            ///< microfacet: real part of the conductor's IOR per channel
     Color k{9.22, 6.27, 4.84};              ///< microfacet: imaginary part (absorption) per channel
+    /// Index into Scene::media of the medium filling the closed shapes made of
+    /// this material ("interior"), or -1: none (scene/medium.h).
+    int interior = -1;
 
     bool is_emissive() const { return !emission.is_black(); }
     /// The diffuse reflectance at surface coordinates uv (scene/texture.h).

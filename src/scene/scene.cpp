@@ -13,6 +13,7 @@ const char* to_string(MaterialType type) {
         case MaterialType::glass: return "glass";
         case MaterialType::microfacet: return "microfacet";
         case MaterialType::rough_dielectric: return "rough_dielectric";
+        case MaterialType::null: return "null";
     }
     return "unknown";
 }
@@ -30,6 +31,13 @@ Triangle Scene::triangle(uint32_t prim) const {
         t.n2 = normals[r.n[2]];
     }
     return t;
+}
+
+bool Scene::has_media() const {
+    if (!media.empty()) return true;
+    for (const Material& m : materials)
+        if (m.type == MaterialType::null) return true;
+    return false;
 }
 
 const Material& Scene::material_of(uint32_t prim) const {

@@ -15,6 +15,7 @@
 #include "scene/geometry.h"
 #include "scene/light.h"
 #include "scene/material.h"
+#include "scene/medium.h"
 
 namespace pt {
 
@@ -61,6 +62,12 @@ struct Scene {
     std::vector<DirectionalLight> directional_lights;
     std::optional<EnvironmentLight> environment;
 
+    /// Participating media (scene/medium.h): materials' interiors and the fog.
+    std::vector<Medium> media;
+    /// Index into `media` of the medium that fills space outside every
+    /// medium boundary (the scene-level "medium"), or -1: vacuum.
+    int outside_medium = -1;
+
     /// Ids of the primitives whose material emits (area lights); set by finalize().
     std::vector<uint32_t> emitters;
     /// Bounds of all primitives; set by finalize().
@@ -95,6 +102,12 @@ struct Scene {
         return !emitters.empty() || !point_lights.empty() || !directional_lights.empty() ||
                environment.has_value();
     }
+
+    /// Whether light meets a medium anywhere, or a null surface (a volume
+    /// path tracer's business: render/integrator_choice.cpp).
+    bool has_media() const;
+    /// The medium inside a closed shape of material `material` (-1: none).
+    int interior_of(uint32_t prim) const { return material_of(prim).interior; }
 
     /// Computes `emitters` and `bounds`; call after adding primitives.
     void finalize();

@@ -21,6 +21,8 @@
 #include "scene/microfacet.h"
 #include "scene/obj_loader.h"
 #include "scene/texture.h"
+#include "scene/density_grid.h"
+#include "scene/medium_boundary.h"
 
 namespace pt {
 namespace {
@@ -136,11 +138,44 @@ void read_microfacet(const JsonReader& j, Material& m) {
     }
 }
 
-Material read_material(const std::string& name, const JsonReader& j, const std::string& scene_path) {
+/// A participating medium (scene/medium.h): {"sigma_a": [r, g, b],
+/// "sigma_s": [r, g, b], "g": 0, "density": "file.grid"}; coefficients per
+/// scene unit, >= 0; g in (-1, 1); the density grid optional.
+Medium read_medium(const std::string& name, const JsonReader& j, const std::string& scene_path) {
+    j.allow_only({"sigma_a", "sigma_s", "g", "density"});
+    if (!j.has("sigma_a") && !j.has("sigma_s"))
+        j.fail("", "a medium needs \"sigma_a\" and/or \"sigma_s\" (per scene unit)");
+    Medium m;
+    m.name = name;
+    m.sigma_a = j.color("sigma_a", Color(0));
+    m.sigma_s = j.color("sigma_s", Color(0));
+    m.g = j.number("g", 0.0);
+    if (!(m.g > -1.0 && m.g < 1.0)) {
+        std::ostringstream s;
+        s << "expected the Henyey-Greenstein g in (-1, 1), got " << m.g;
+        j.fail("g", s.str());
+    }
+    if (j.has("density"))
+        m.density = std::make_shared<const DensityGrid>(
+            load_density_grid(resolve(scene_path, j.string("density")), j.file() + ": " + j.path_of("density")));
+    return m;
+}
+
+Material read_material(const std::string& name, const JsonReader& j, const std::string& scene_path, Scene& scene) {
     Material m;
     m.name = name;
     std::string type = j.string("type");
-    if (type == "diffuse") {
+    if (j.has("interior")) {
+        if (type != "null" && type != "transparent" && type != "glass" && type != "rough_dielectric")
+            j.fail("interior", "a medium needs a boundary that light can cross: material type null, glass or "
+                               "rough_dielectric, not " + type);
+        m.interior = int(scene.media.size());
+        scene.media.push_back(read_medium(name, j.object("interior"), scene_path));
+    }
+    if (type == "null" || type == "transparent") {
+        j.allow_only({"type", "interior"});
+        m.type = MaterialType::null;
+    } else if (type == "diffuse") {
         j.allow_only({"type", "albedo", "emission"});
         m.type = MaterialType::diffuse;
         if (j.has("albedo") && !j.is_array("albedo")) m.albedo_texture = read_albedo_texture(j.object("albedo"), scene_path);
@@ -150,7 +185,7 @@ Material read_material(const std::string& name, const JsonReader& j, const std::
         m.type = MaterialType::mirror;
         m.reflectance = j.color("reflectance", m.reflectance, 1.0);
     } else if (type == "glass") {
-        j.allow_only({"type", "ior", "reflectance", "transmittance", "emission"});
+        j.allow_only({"type", "ior", "reflectance", "transmittance", "emission", "interior"});
         m.type = MaterialType::glass;
         m.ior = j.positive("ior", 1.5);
         m.reflectance = j.color("reflectance", m.reflectance, 1.0);
@@ -180,7 +215,8 @@ Material read_material(const std::string& name, const JsonReader& j, const std::
                        "\"reflectance\" (its colour)");
         }
     } else if (type == "rough_dielectric") {
-        j.allow_only({"type", "ior", "roughness", "distribution", "exponent", "reflectance", "transmittance", "emission"});
+        j.allow_only({"type", "ior", "roughness", "distribution", "exponent", "reflectance", "transmittance", "emission",
+                      "interior"});
         m.type = MaterialType::rough_dielectric;
         m.ior = j.positive("ior", 1.5);
         read_microfacet(j, m);
@@ -188,7 +224,7 @@ Material read_material(const std::string& name, const JsonReader& j, const std::
         m.transmittance = j.color("transmittance", m.transmittance, 1.0);
     } else {
         j.fail("type", "unknown material type \"" + type +
-                           "\" (expected diffuse, mirror, glass, microfacet or rough_dielectric)");
+                           "\" (expected diffuse, mirror, glass, microfacet, rough_dielectric or null)");
     }
     m.emission = j.color("emission", Color(0));
     return m;
@@ -225,7 +261,7 @@ public:
         if (!root.has("materials")) return;
         for (const auto& [name, j] : root.object_map("materials")) {
             material_index_[name] = uint32_t(scene_.materials.size());
-            scene_.materials.push_back(read_material(name, j, path_));
+            scene_.materials.push_back(read_material(name, j, path_, scene_));
         }
     }
 
@@ -246,7 +282,7 @@ public:
             options.where = j.file() + ": " + j.path_of("");
             if (j.has("material")) options.material = material(j);
             MeshData mesh = read_obj(scene_, resolve(path_, j.string("file")), options);
-            add_mesh(scene_, mesh, transform);
+            add_boundary_mesh(j, mesh, transform);
         } else if (type == "sphere") {
             j.allow_only({"type", "center", "radius", "material", "transform"});
             if (!transform.is_uniform_scale()) j.fail("transform", "a sphere needs a uniform scale");
@@ -267,7 +303,7 @@ public:
             mesh.uvs = {Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1)};  // (u, v) along (edge1, edge2)
             mesh.face_uvs = {{0, 1, 2}, {0, 2, 3}};
             mesh.material = material(j);
-            add_mesh(scene_, mesh, transform);
+            add_boundary_mesh(j, mesh, transform);
         } else if (type == "torus_knot") {
             j.allow_only({"type", "p", "q", "radius", "tube_radius", "segments", "sides", "material", "transform"});
             int segments = j.integer("segments", 3, 1 << 22, 500), sides = j.integer("sides", 3, 1 << 16, 10);
@@ -277,7 +313,7 @@ public:
             MeshData mesh = make_torus_knot(j.integer("p", 1, 64, 2), j.integer("q", 1, 64, 3),
                                             j.positive("radius", 1.0), j.positive("tube_radius", 0.15), segments, sides);
             mesh.material = material(j);
-            add_mesh(scene_, mesh, transform);
+            add_boundary_mesh(j, mesh, transform);
         } else {
             j.fail("type", "unknown object type \"" + type + "\" (expected mesh, sphere, quad, torus_knot or instance)");
         }
@@ -370,6 +406,14 @@ public:
     }
 
 private:
+    /// Adds a mesh; where its material holds a medium, its faces of that
+    /// material must enclose it (scene/medium_boundary.h), wound outwards.
+    void add_boundary_mesh(const JsonReader& j, MeshData& mesh, const Transform& transform) {
+        std::string problem = orient_medium_boundaries(mesh, scene_.materials);
+        if (!problem.empty()) j.fail("", problem);
+        add_mesh(scene_, mesh, transform);
+    }
+
     Transform read_shape_transform(const JsonReader& j) const {
         return j.has("transform") ? read_transform(j.object("transform")) : Transform();
     }
@@ -385,7 +429,7 @@ private:
 Scene parse_json_scene(const std::string& text, const std::string& path) {
     nlohmann::json root_json = parse_json_strictly(text, path);
     JsonReader root(root_json, path, "");
-    root.allow_only({"description", "camera", "film", "materials", "shapes", "objects", "lights"});
+    root.allow_only({"description", "camera", "film", "materials", "shapes", "objects", "lights", "medium"});
 
     Scene scene;
     scene.path = path;
@@ -401,6 +445,10 @@ Scene parse_json_scene(const std::string& text, const std::string& path) {
     }
     SceneBuilder builder(scene, path);
     builder.read_materials(root);
+    if (root.has("medium")) {
+        scene.outside_medium = int(scene.media.size());
+        scene.media.push_back(read_medium("medium", root.object("medium"), path));
+    }
     builder.read_shapes(root);
     for (const JsonReader& object : root.object_array("objects")) builder.read_object(object);
     if (root.has("lights"))

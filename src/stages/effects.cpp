@@ -25,6 +25,9 @@ std::vector<std::string> Effects::names() const {
     add(point_light_caustics, "point_light_caustics");
     add(specular_diffuse_specular, "specular_diffuse_specular");
     add(depth_of_field, "depth_of_field");
+    add(medium_absorption, "medium_absorption");
+    add(single_scattering, "single_scattering");
+    add(multiple_scattering, "multiple_scattering");
     return out;
 }
 
@@ -134,6 +137,8 @@ Effects analyze_effects(const Scene& scene, const RenderSettings& settings) {
             case MaterialType::rough_dielectric:
                 any_nonspecular = glossy = glass = true;
                 break;
+            case MaterialType::null:
+                break;  // nothing there: light goes straight on
         }
     }
     const bool area = !scene.emitters.empty(), environment = scene.environment.has_value();
@@ -160,6 +165,15 @@ Effects analyze_effects(const Scene& scene, const RenderSettings& settings) {
     e.point_light_caustics = (point || directional) && any_nonspecular && any_specular && m >= 2;
     e.specular_diffuse_specular = lit && any_nonspecular && any_specular && m >= 3;
     e.depth_of_field = scene.camera.lens_radius > 0;
+    // Media: any medium dims what is seen through it; one that scatters
+    // lights itself (a bounce) and, from -m 2, lights itself again.
+    bool scattering_medium = false;
+    for (const Medium& medium : scene.media) {
+        e.medium_absorption |= !medium.sigma_t().is_black();
+        scattering_medium |= medium.scatters();
+    }
+    e.single_scattering = scattering_medium && lit && m >= 1;
+    e.multiple_scattering = scattering_medium && lit && m >= 2;
     return e;
 }
 

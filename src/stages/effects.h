@@ -56,6 +56,9 @@ struct Effects {
     /// glass (L S+ D S+ E, -m >= 3); with a point light, photon mapping's alone.
     bool specular_diffuse_specular = false;
     bool depth_of_field = false;  ///< thin lens (-b > 0)
+    bool medium_absorption = false;    ///< light dimmed along rays by participating media (extinction)
+    bool single_scattering = false;    ///< light scattered once in a medium towards the camera (-m >= 1)
+    bool multiple_scattering = false;  ///< light scattered more than once in media (-m >= 2)
 
     /// Names of the effects present, in a fixed order ("area_lights", ...).
     std::vector<std::string> names() const;

@@ -35,6 +35,7 @@ const char* to_string(IntegratorKind k) {
         case IntegratorKind::whitted: return "whitted";
         case IntegratorKind::direct: return "direct";
         case IntegratorKind::path: return "path";
+        case IntegratorKind::volpath: return "volpath";
         case IntegratorKind::pm: return "pm";
         case IntegratorKind::sppm: return "sppm";
     }

@@ -33,6 +33,7 @@ enum class IntegratorKind {
     path,       ///< path tracing with -m, -o and Russian roulette
     pm,         ///< photon mapping, Jensen's two passes with final gathering (render/pm_integrator.cpp)
     sppm,       ///< stochastic progressive photon mapping (render/sppm.h)
+    volpath,    ///< path tracing through participating media (Part 9)
 };
 
 /// The kernel of a photon density estimate (stages/photon.h), `--photon-kernel`.

@@ -16,6 +16,7 @@ const char* to_string(Stage stage) {
         case Stage::adaptive: return "adaptive";
         case Stage::sampler: return "sampler";
         case Stage::photon: return "photon";
+        case Stage::media: return "media";
     }
     return "?";
 }
@@ -30,6 +31,7 @@ int part_of(Stage stage) {
         case Stage::adaptive: return 5;
         case Stage::sampler: return 6;
         case Stage::photon: return 8;
+        case Stage::media: return 9;
     }
     return 0;
 }
@@ -58,7 +60,7 @@ StageSet StageSet::parse(const std::string& list, const std::string& flag) {
         if (!found)
             throw InputError(flag + ": unknown stage '" + name +
                              "' (expected a comma-separated list of camera, intersect, bvh, direct, "
-                             "global, adaptive, sampler, photon, or 'all' or 'none')");
+                             "global, adaptive, sampler, photon, media, or 'all' or 'none')");
     }
     if (set.empty()) throw InputError(flag + ": empty stage list (use 'none' for no student stages)");
     return set;

@@ -79,6 +79,13 @@ Stages make_stages(StageSet student, TriangleTest triangle_test) {
     } else {
         s.photon = {reference::emit_photon, reference::build_kdtree, reference::k_nearest, reference::density_estimate};
     }
+    if (student.contains(Stage::media)) {
+        s.media = {student::homogeneous_transmittance, student::sample_distance, student::hg_phase, student::sample_hg,
+                   student::in_scattered_radiance};
+    } else {
+        s.media = {reference::homogeneous_transmittance, reference::sample_distance, reference::hg_phase,
+                   reference::sample_hg, reference::in_scattered_radiance};
+    }
     return s;
 }
 

@@ -17,6 +17,7 @@
 #include "stages/direct.h"
 #include "stages/global.h"
 #include "stages/intersect.h"
+#include "stages/media.h"
 #include "stages/photon.h"
 #include "stages/sampler.h"
 #include "stages/stage_set.h"
@@ -70,6 +71,7 @@ struct Stages {
     DirectStage direct;
     GlobalStage global;
     SamplerStage sampler;
+    MediaStage media;
     PhotonStage photon;
 
     bool is_student(Stage s) const { return student.contains(s); }

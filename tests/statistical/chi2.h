@@ -25,7 +25,8 @@
 // sampling of every light kind (10, test_light_emission.cpp); Part 6 the
 // uniformity of four samplers in four places each (16,
 // test_sampler_uniformity.cpp); the glossy models (14,
-// test_glossy_sampling.cpp): 64 in all. Add a test, raise
+// test_glossy_sampling.cpp); Part 9 the phase function and free-flight
+// distances (6, test_media_sampling.cpp): 70 in all. Add a test, raise
 // kChiSquareTestCount.
 #pragma once
 
@@ -47,7 +48,7 @@ namespace pt::stats {
 /// Every chi-square test in tests/statistical (one per TEST_CASE or
 /// SUBCASE that calls chi2_test); the Sidak correction divides the family
 /// significance among them. Keep it in sync when adding tests.
-constexpr int kChiSquareTestCount = 64;
+constexpr int kChiSquareTestCount = 70;
 constexpr double kFamilySignificance = 0.01;
 
 /// Per-test significance that keeps the family-wise error rate at `alpha`

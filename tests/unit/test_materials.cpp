@@ -227,7 +227,7 @@ TEST_CASE("microfacet in scene files and MTL: strict, with the colour or the com
               .find("materials.metal.roughness") != std::string::npos);
     CHECK(error(R"({"type": "microfacet", "roughness": 0.3, "reflectance": [1.5, 0.5, 0.5]})")
               .find("reflectance") != std::string::npos);
-    CHECK(error(R"({"type": "velvet"})").find("diffuse, mirror, glass, microfacet or rough_dielectric") !=
+    CHECK(error(R"({"type": "velvet"})").find("diffuse, mirror, glass, microfacet, rough_dielectric or null") !=
           std::string::npos);
 
     // MTL: Pm > 0 makes a rough metal of colour Kd and alpha Pr.
