@@ -127,7 +127,7 @@ TEST_CASE("grade: writes the three reports; exit 1 unless every task passes; 2 f
     for (const char* f : {"report.md", "report.html", "report.json"})
         CHECK(std::filesystem::exists(dir + "/" + f));
     nlohmann::json j = nlohmann::json::parse(std::ifstream(dir + "/report.json"));
-    CHECK(j["tasks"].size() == 20);  // parts 1 to 5
+    CHECK(j["tasks"].size() == 22);  // parts 1 to 5
     CHECK((code == 0) == j["all_passed"].get<bool>());
     bool handout = j["tasks"][0]["status"] == "not implemented";
     if (handout) {

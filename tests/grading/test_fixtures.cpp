@@ -84,5 +84,5 @@ TEST_CASE("a fixture's report shows the failure with images and numbers") {
     CHECK(html.find("FAIL") != std::string::npos);
     nlohmann::json j = json_report(report);
     CHECK(j["tasks"][1]["status"] == "fail");
-    CHECK(j["tasks"][1]["images"].size() == 2);
+    CHECK(j["tasks"][1]["images"].size() == 3);
 }

@@ -3,6 +3,7 @@
 // only in the runners. Calling one of these is a bug of the grader.
 #include <stdexcept>
 
+#include "stages/media.h"
 #include "stages/photon.h"
 #include "stages/stages.h"
 
@@ -68,6 +69,13 @@ Color density_estimate(const std::vector<PhotonContribution>&, double, PhotonKer
 Vec2 stratified_sample_2d(int, int, int, Vec2) { absent("stratified_sample_2d"); }
 double scrambled_radical_inverse(uint64_t, const DigitPermutation&) {
     absent("scrambled_radical_inverse");
+}
+Color homogeneous_transmittance(const Color&, double) { absent("homogeneous_transmittance"); }
+DistanceSample sample_distance(double, double, double) { absent("sample_distance"); }
+double hg_phase(double, double) { absent("hg_phase"); }
+Vec3 sample_hg(const Vec3&, double, Vec2) { absent("sample_hg"); }
+Color in_scattered_radiance(const RenderContext&, const Vec3&, const Vec3&, int, Rng&) {
+    absent("in_scattered_radiance");
 }
 
 }  // namespace pt::student
