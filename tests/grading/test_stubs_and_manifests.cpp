@@ -83,6 +83,16 @@ Stages stub_stages() {
                                       Rng&) -> Color {
         throw NotImplemented(3, "6", "one_bounce_radiance");
     };
+    s.direct.power_heuristic = [](double, double, double, double) -> double {
+        throw NotImplemented(3, "7", "power_heuristic");
+    };
+    s.direct.balance_heuristic = [](double, double, double, double) -> double {
+        throw NotImplemented(3, "7", "balance_heuristic");
+    };
+    s.direct.estimate_direct_lighting_mis = [](const RenderContext&, const Ray&,
+                                               const SurfaceInteraction&, Rng&) -> Color {
+        throw NotImplemented(3, "8", "estimate_direct_lighting_mis");
+    };
     s.global.at_least_one_bounce_radiance =
         [](const RenderContext&, const Ray&, const SurfaceInteraction&, const Color&,
            Rng&) -> Color { throw NotImplemented(4, "1", "at_least_one_bounce_radiance"); };
@@ -366,7 +376,7 @@ TEST_CASE("isolated tasks: a crash or an endless loop fails only its task") {
     REQUIRE(report.tasks.size() == 4);
     CHECK(report.tasks[0].status == TaskStatus::pass);
     CHECK(report.tasks[1].status == TaskStatus::pass);
-    CHECK(report.tasks[1].images.size() == 2);  // the result survives the trip through the pipe
+    CHECK(report.tasks[1].images.size() == 3);  // the result survives the trip through the pipe
     CHECK(report.tasks[2].status == TaskStatus::fail);
     CHECK(report.tasks[2].message.find("timed out") != std::string::npos);
     CHECK(report.tasks[3].status == TaskStatus::fail);
