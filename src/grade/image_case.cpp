@@ -65,7 +65,8 @@ void parse_photon_keys(const json& j, ImageCase& c, const std::string& where) {
         if (j.contains(k) && !pm)
             throw InputError(where + "." + k + ": applies only to \"integrator\": \"pm\"");
     if (!pm) return;
-    if (!j.contains("photon_seed") || !j["photon_seed"].is_number_unsigned())
+    if (!j.contains("photon_seed") || !j["photon_seed"].is_number_integer() ||
+        j["photon_seed"].get<long long>() < 0)
         throw InputError(where + ".photon_seed: expected a non-negative integer (pm needs one photon map "
                          "for every render)");
     ps.fixed_seed = true;

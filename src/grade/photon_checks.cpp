@@ -152,15 +152,19 @@ std::vector<Query> queries(Rng& rng, const std::vector<Vec3>& points, int count)
         Vec3 p = points.empty() || i % 3 == 0 ? random_in_cube(rng) * 12.0 : points[rng.next_index(uint32_t(points.size()))];
         const int ks[] = {1, 5, 50, int(points.size()) + 10};
         const int k = ks[i % 4];
-        // A radius between two neighbours' distances (no point on it), or none.
+        // A radius halfway between two neighbours' distinct distances, so
+        // that no point lies within rounding of it (a distance summed in
+        // another order may differ in its last bit), or none.
         double max_dist2 = inf;
         std::string what = "k = " + std::to_string(k) + ", no radius";
         if (i % 2 == 1) {
             std::vector<double> all = brute_force(points, p, int(points.size()) + 1, inf);
-            if (all.size() >= 2) {
-                size_t j = rng.next_index(uint32_t(all.size() - 1));
+            std::vector<size_t> gaps;  // j with a clear gap between all[j] and all[j + 1]
+            for (size_t j = 0; j + 1 < all.size(); ++j)
+                if (all[j + 1] - all[j] > 1e-9 * all[j + 1]) gaps.push_back(j);
+            if (!gaps.empty()) {
+                const size_t j = gaps[rng.next_index(uint32_t(gaps.size()))];
                 max_dist2 = 0.5 * (all[j] + all[j + 1]);
-                if (max_dist2 == all[j] || max_dist2 == all[j + 1]) max_dist2 = all[j + 1];  // equal distances: the tie's value
                 what = "k = " + std::to_string(k) + ", max_dist2 " + format_num(max_dist2);
             }
         }
@@ -171,7 +175,7 @@ std::vector<Query> queries(Rng& rng, const std::vector<Vec3>& points, int count)
         q.push_back({p, 0, inf, "k = 0 (none)"});
         q.push_back({p, 10, -1, "a negative max_dist2 (none)"});
         q.push_back({p, 10, 0, "max_dist2 = 0 (the points equal to p)"});
-        q.push_back({p + Vec3(3, 4, 0), 1000000, 25, "every point within a radius, k above n"});
+        q.push_back({p + Vec3(3, 4, 0), 1000000, 1e4, "every point within the radius (all lie within 50), k above n"});
     }
     return q;
 }

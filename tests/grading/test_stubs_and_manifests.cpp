@@ -482,3 +482,50 @@ TEST_CASE("image cases: Russian roulette keys are read strictly and change the f
     fails_with({{"russian_roulette", false}, {"rr_depth", 2}}, "has no effect");
     fails_with({{"rr_dpth", 2}}, "unknown key \"rr_dpth\"");
 }
+
+TEST_CASE("image cases: sampler and photon keys are read strictly and change the fingerprint") {
+    using nlohmann::json;
+    const std::string assets = source_dir() + "/assets";
+    const json path = {{"scene", "scenes/cbox.json"}, {"integrator", "path"}, {"spp", 8}};
+    const json pm = {{"scene", "scenes/caustic_glass.json"}, {"integrator", "pm"}, {"spp", 8},
+                     {"photon_seed", 1}};
+    auto with = [](json j, const json& extra) {
+        j.update(extra);
+        return j;
+    };
+    ImageCase plain = parse_image_case(path, "case");
+    ImageCase stratified = parse_image_case(with(path, {{"sampler", "stratified"}}), "case");
+    CHECK(stratified.settings.sampler == SamplerKind::stratified);
+    CHECK(case_fingerprint(parse_image_case(with(path, {{"sampler", "independent"}}), "case"), assets) ==
+          case_fingerprint(plain, assets));
+    CHECK(case_fingerprint(stratified, assets) != case_fingerprint(plain, assets));
+    ImageCase photons = parse_image_case(with(pm, {{"caustic_photons", 1000}, {"photon_view", "caustic"}}), "case");
+    CHECK(photons.settings.photon.fixed_seed);
+    CHECK(photons.settings.photon.seed == 1);
+    CHECK(photons.settings.photon.caustic_photons == 1000);
+    CHECK(photons.settings.photon.view == PhotonView::caustic);
+    CHECK(case_fingerprint(photons, assets) !=
+          case_fingerprint(parse_image_case(with(pm, {{"caustic_photons", 2000}, {"photon_view", "caustic"}}), "case"),
+                           assets));
+    CHECK(case_fingerprint(photons, assets) !=
+          case_fingerprint(parse_image_case(with(pm, {{"caustic_photons", 1000}, {"photon_view", "caustic"},
+                                                      {"photon_seed", 2}}),
+                                            "case"),
+                           assets));
+    auto fails_with = [&](const json& j, const std::string& expected) {
+        try {
+            parse_image_case(j, "m.json: case");
+            FAIL("no error for " << j.dump());
+        } catch (const InputError& e) {
+            INFO(e.what());
+            CHECK(std::string(e.what()).find(expected) != std::string::npos);
+        }
+    };
+    fails_with(with(path, {{"sampler", "sobel"}}), "m.json: case.sampler");
+    fails_with(with(path, {{"photons", 1000}}), "applies only to \"integrator\": \"pm\"");
+    json no_seed = pm;
+    no_seed.erase("photon_seed");
+    fails_with(no_seed, "photon_seed");
+    fails_with(with(pm, {{"photon_kernel", "gauss"}}), "photon_kernel");
+    fails_with(with(pm, {{"knn", -1}}), "knn");
+}
