@@ -30,6 +30,11 @@ double thread_seconds() {
 
 int run_kdtree(const std::vector<std::string>& args) {
     long long points = 1000000, k = 50, queries = 200000;
+    for (const std::string& a : args)
+        if (a == "-h" || a == "--help") {
+            std::printf("usage: bench %s\n", kUsage);
+            return 0;
+        }
     for (size_t i = 0; i < args.size(); ++i) {
         if (args[i] == "--points" && i + 1 < args.size()) points = parse_whole_number("--points", args[++i], 1, 1ll << 28);
         else if (args[i] == "--k" && i + 1 < args.size()) k = parse_whole_number("--k", args[++i], 1, 1 << 16);
