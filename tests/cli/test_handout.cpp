@@ -33,7 +33,7 @@ bool is_comment(const std::string& line) { return trimmed(line).rfind("//", 0) =
 
 const char* kStubs[] = {"part1/camera.cpp", "part1/intersect.cpp", "part2/bvh.cpp",   "part3/bsdf.cpp",
                         "part3/direct.cpp", "part3/mis.cpp",      "part4/global.cpp", "part5/adaptive.cpp",
-                        "part6/sampler.cpp"};
+                        "part6/sampler.cpp", "part8/photon.cpp", "part9/media.cpp"};
 
 }  // namespace
 
@@ -73,6 +73,10 @@ TEST_CASE("guided handouts are the repository's; standard ones keep all code and
     CHECK(readme4.find("Follow the numbered steps") == std::string::npos);
     CHECK(readme4.find("Russian roulette, and why it is unbiased") != std::string::npos);
     CHECK(read_file(dir + "/guided/part4/README.md").find("<!-- guided -->") == std::string::npos);
+    // Parts 8 and 9 too: the kd-tree query's descent and HG's frame are steps.
+    CHECK(read_file(dir + "/standard/part8/README.md").find("visit the side that holds p first") == std::string::npos);
+    CHECK(read_file(dir + "/guided/part8/README.md").find("visit the side that holds p first") != std::string::npos);
+    CHECK(read_file(dir + "/standard/part9/README.md").find("Frame(-wo)") == std::string::npos);
     CHECK(file_exists(dir + "/standard/part3/grading.json"));
     CHECK(file_exists(dir + "/standard/part3/deliverables.json"));
 }
