@@ -14,6 +14,7 @@
 #include "core/math.h"
 #include "core/memory_budget.h"
 #include "image/image_io.h"
+#include "scene/csg.h"
 #include "scene/framing.h"
 #include "scene/fresnel.h"
 #include "scene/json_reader.h"
@@ -275,6 +276,7 @@ public:
     void read_object(const JsonReader& j) {
         std::string type = j.string("type");
         if (type == "instance") return read_instance(j);
+        if (type == "csg") return read_csg_object(j);
         Transform transform = j.has("transform") ? read_transform(j.object("transform")) : Transform();
         if (type == "mesh") {
             j.allow_only({"type", "file", "material", "transform"});
@@ -315,7 +317,7 @@ public:
             mesh.material = material(j);
             add_boundary_mesh(j, mesh, transform);
         } else {
-            j.fail("type", "unknown object type \"" + type + "\" (expected mesh, sphere, quad, torus_knot or instance)");
+            j.fail("type", "unknown object type \"" + type + "\" (expected mesh, sphere, quad, torus_knot, instance or csg)");
         }
     }
 
@@ -327,6 +329,7 @@ public:
             auto shape = std::make_shared<Scene>();
             shape->path = path_;
             shape->materials.push_back(Material{});  // placeholder: instances bring their own
+            std::shared_ptr<const CsgTree> csg;
             std::string type = j.string("type");
             if (type == "mesh") {
                 j.allow_only({"type", "file", "transform"});
@@ -346,12 +349,17 @@ public:
             } else if (type == "sphere") {
                 j.allow_only({"type", "center", "radius"});
                 shape->spheres.push_back({{j.vec3("center", Vec3(0)), j.positive("radius", 1.0)}, 0});
+            } else if (type == "csg") {
+                j.allow_only({"type", "op", "operands"});
+                auto tree = std::make_shared<CsgTree>();
+                read_csg_node(j, *shape, *tree, false, 0);
+                csg = tree;
             } else {
-                j.fail("type", "unknown shape type \"" + type + "\" (expected mesh, torus_knot or sphere)");
+                j.fail("type", "unknown shape type \"" + type + "\" (expected mesh, torus_knot, sphere or csg)");
             }
             shape->finalize();
             shape_index_[name] = uint32_t(scene_.shapes.size());
-            scene_.shapes.push_back({name, shape});
+            scene_.shapes.push_back({name, shape, csg});
         }
     }
 
@@ -361,11 +369,91 @@ public:
         std::string name = j.string("shape");
         auto it = shape_index_.find(name);
         if (it == shape_index_.end()) j.fail("shape", "no shape named \"" + name + "\" in \"shapes\"");
+        place_instance(j, it->second, "an instance");
+    }
+
+    /// {"type": "csg", "op": ..., "operands": [...], "material": M,
+    /// "transform": {...}}: a CSG shape of its own, placed as an instance
+    /// (its rays go into the tree's space by the inverse transform).
+    void read_csg_object(const JsonReader& j) {
+        j.allow_only({"type", "op", "operands", "material", "transform"});
+        auto shape = std::make_shared<Scene>();
+        shape->path = path_;
+        shape->materials.push_back(Material{});
+        auto tree = std::make_shared<CsgTree>();
+        read_csg_node(j, *shape, *tree, false, 0);
+        shape->finalize();
+        scene_.shapes.push_back({j.path_of(""), shape, tree});
+        place_instance(j, uint32_t(scene_.shapes.size() - 1), "a CSG object");
+    }
+
+    /// One node of a CSG tree and its subtree: {"type": "csg", "op",
+    /// "operands"}, or a leaf: {"type": "sphere", "center", "radius"} or
+    /// {"type": "mesh", "file", "transform"} (closed). `inverted`: the node is
+    /// subtracted an odd number of times, so its leaves are stored turned
+    /// round (scene/csg.h). Returns the node's index.
+    uint32_t read_csg_node(const JsonReader& j, Scene& shape, CsgTree& tree, bool inverted, int depth) {
+        constexpr int kMaxCsgDepth = 32;
+        if (depth > kMaxCsgDepth) j.fail("", "CSG nested more than " + std::to_string(kMaxCsgDepth) + " levels deep");
+        const uint32_t index = uint32_t(tree.nodes.size());
+        tree.nodes.emplace_back();
+        CsgNode node;
+        node.inverted = inverted;
+        std::string type = j.string("type");
+        if (type == "csg") {
+            if (depth > 0) j.allow_only({"type", "op", "operands"});
+            std::string op = j.string("op");
+            if (!parse_csg_op(op, node.op))
+                j.fail("op", "expected \"union\", \"intersection\" or \"difference\", got \"" + op + "\"");
+            std::vector<JsonReader> operands = j.object_array("operands");
+            if (operands.size() < 2)
+                j.fail("operands", "expected at least two operands, got " + std::to_string(operands.size()));
+            for (size_t k = 0; k < operands.size(); ++k) {
+                // The subtracted operands of a difference face the other way.
+                bool flip = node.op == CsgOp::difference && k > 0;
+                node.children.push_back(read_csg_node(operands[k], shape, tree, inverted != flip, depth + 1));
+            }
+        } else if (type == "sphere") {
+            j.allow_only({"type", "center", "radius"});
+            SphereRecord sphere{{j.vec3("center"), j.positive("radius")}, 0, inverted};
+            node.sphere = true;
+            node.first = uint32_t(shape.spheres.size());
+            node.count = 1;
+            shape.spheres.push_back(sphere);
+        } else if (type == "mesh") {
+            j.allow_only({"type", "file", "transform"});
+            ObjLoadOptions options;
+            options.where = j.file() + ": " + j.path_of("");
+            options.material = 0;
+            MeshData mesh = read_obj(shape, resolve(path_, j.string("file")), options);
+            std::string problem = orient_closed_mesh(mesh, "a CSG operand must be a closed, consistently wound mesh, but ");
+            if (!problem.empty()) j.fail("", problem);
+            if (inverted) {
+                for (size_t f = 0; f < mesh.faces.size(); ++f) {
+                    std::swap(mesh.faces[f][1], mesh.faces[f][2]);
+                    if (!mesh.face_normals.empty()) std::swap(mesh.face_normals[f][1], mesh.face_normals[f][2]);
+                    if (!mesh.face_uvs.empty()) std::swap(mesh.face_uvs[f][1], mesh.face_uvs[f][2]);
+                }
+                for (Vec3& n : mesh.normals) n = -n;
+            }
+            node.first = uint32_t(shape.triangles.size());
+            add_mesh(shape, mesh, read_shape_transform(j));
+            node.count = uint32_t(shape.triangles.size()) - node.first;
+        } else {
+            j.fail("type", "unknown CSG operand type \"" + type + "\" (expected sphere, mesh or csg)");
+        }
+        tree.nodes[index] = node;
+        return index;
+    }
+
+    /// An instance of shape `shape_index` with the object's material and
+    /// transform (`what` names the object in errors).
+    void place_instance(const JsonReader& j, uint32_t shape_index, const std::string& what) {
         InstanceRecord instance;
-        instance.shape = it->second;
+        instance.shape = shape_index;
         instance.material = material(j);
         if (scene_.materials[instance.material].is_emissive())
-            j.fail("material", "an instance cannot emit light (instanced area lights are not supported); "
+            j.fail("material", what + " cannot emit light (instanced area lights are not supported); "
                                "place an emitting object directly in \"objects\"");
         instance.to_world = j.has("transform") ? read_transform(j.object("transform")) : Transform();
         const BBox& box = scene_.shapes[instance.shape].geometry->bounds;
