@@ -425,10 +425,14 @@ public:
             auto it = shape_index_.find(shape);
             if (it == shape_index_.end()) member.fail("shape", "no shape named \"" + shape + "\" in \"shapes\"");
             uint32_t m = material(member);
-            if (scene_.materials[m].is_emissive())
-                member.fail("material", "an instance cannot emit light (instanced area lights are not supported); "
-                                        "place an emitting object directly in \"objects\"");
+            const bool emits = scene_.materials[m].is_emissive();
+            if (emits && scene_.shapes[it->second].csg)
+                member.fail("material", "an instance cannot emit light (a CSG solid is not sampled as a light)");
             if (!place) continue;
+            if (emits) {
+                expand_emitting_instance(member, it->second, m, composed);
+                continue;
+            }
             constexpr size_t kMaxInstances = 16u << 20;
             if (scene_.instances.size() >= kMaxInstances)
                 member.fail("", "the groups place more than " + std::to_string(kMaxInstances) +
@@ -538,11 +542,40 @@ public:
         InstanceRecord instance;
         instance.shape = shape_index;
         instance.material = material(j);
-        if (scene_.materials[instance.material].is_emissive())
-            j.fail("material", what + " cannot emit light (instanced area lights are not supported); "
-                               "place an emitting object directly in \"objects\"");
-        add_instance(instance.shape, instance.material,
-                     j.has("transform") ? read_transform(j.object("transform")) : Transform());
+        Transform to_world = j.has("transform") ? read_transform(j.object("transform")) : Transform();
+        if (scene_.materials[instance.material].is_emissive()) {
+            if (scene_.shapes[shape_index].csg) j.fail("material", what + " cannot emit light (a CSG solid is not sampled as a light)");
+            return expand_emitting_instance(j, shape_index, instance.material, to_world);
+        }
+        add_instance(instance.shape, instance.material, to_world);
+    }
+
+    /// An emitting instance: its shape's primitives copied into the world,
+    /// transformed, since light sampling (scene/light_set.h) picks world
+    /// triangles and spheres by area. Lamps are few and small, so the copy
+    /// is cheap where it happens; everything else stays instanced.
+    void expand_emitting_instance(const JsonReader& j, uint32_t shape_index, uint32_t material, const Transform& t) {
+        const Scene& g = *scene_.shapes[shape_index].geometry;
+        if (!g.spheres.empty() && !t.is_uniform_scale())
+            j.fail("transform", "an emitting instance of a sphere needs a uniform scale (an ellipsoid is not sampled as a light)");
+        for (const SphereRecord& s : g.spheres)
+            scene_.spheres.push_back({{t.point(s.sphere.center), s.sphere.radius * t.scale.x}, material});
+        if (g.triangles.empty()) return;
+        check_geometry_budget(scene_.triangles.size() + g.triangles.size(), scene_.positions.size() + g.positions.size(),
+                              j.file() + ": " + j.path_of("") + " (an emitting instance, copied)");
+        MeshData mesh;
+        mesh.positions = g.positions;
+        mesh.normals = g.normals;
+        mesh.uvs = g.uvs;
+        mesh.material = material;
+        const bool smooth = g.triangles[0].n[0] != kNoIndex;  // a mesh is smooth everywhere or nowhere
+        for (size_t f = 0; f < g.triangles.size(); ++f) {
+            const TriangleRecord& r = g.triangles[f];
+            mesh.faces.push_back({r.v[0], r.v[1], r.v[2]});
+            if (smooth) mesh.face_normals.push_back({r.n[0], r.n[1], r.n[2]});
+            if (!g.triangle_uvs.empty()) mesh.face_uvs.push_back(g.triangle_uvs[f]);
+        }
+        add_mesh(scene_, mesh, t);
     }
 
     void add_instance(uint32_t shape, uint32_t material, const Transform& to_world) {

@@ -162,8 +162,8 @@ TEST_CASE("instance errors name the JSON path") {
     CHECK(load_error(base + R"({"type": "instance", "shape": "t", "material": "white"}]})")
               .find("objects[0].shape: no shape named \"t\"") != std::string::npos);
     CHECK(load_error(base + R"({"type": "instance", "shape": "s"}]})").find("objects[0]") != std::string::npos);
-    CHECK(load_error(base + R"({"type": "instance", "shape": "s", "material": "lamp"}]})")
-              .find("cannot emit") != std::string::npos);
+    CHECK(load_error(base + R"({"type": "instance", "shape": "s", "material": "lamp", "transform": {"scale": [1, 2, 1]}}]})")
+              .find("objects[0].transform: an emitting instance of a sphere needs a uniform scale") != std::string::npos);
     CHECK(load_error(base + R"({"type": "instance", "shape": "s", "material": "white", "color": 1}]})")
               .find("color") != std::string::npos);
     CHECK(load_error(std::string("{") + kMaterials + R"(, "shapes": {"s": {"type": "cube"}}, "objects": []})")
@@ -225,7 +225,9 @@ TEST_CASE("groups: nested instances are the composition of their transforms, fla
 
 TEST_CASE("groups: cycles, materials on groups, shears and unknown members are errors naming the path") {
     auto scene_with_shapes = [](const std::string& shapes, const std::string& objects) {
-        return std::string("{") + kMaterials + R"(, "shapes": {"ball": {"type": "sphere"}, )" + shapes +
+        return std::string("{") + kMaterials + R"(, "shapes": {"ball": {"type": "sphere"}, "lens": {"type": "csg",
+            "op": "intersection", "operands": [{"type": "sphere", "center": [0, 0, 0.5], "radius": 1},
+                                               {"type": "sphere", "center": [0, 0, -0.5], "radius": 1}]}, )" + shapes +
                R"(}, "objects": [)" + objects + "]}";
     };
     const std::string ball = R"({"type": "instance", "shape": "ball", "material": "white"})";
@@ -246,8 +248,8 @@ TEST_CASE("groups: cycles, materials on groups, shears and unknown members are e
          "shapes.g.objects[0].shape: no shape named \"nothing\""},
         {R"("g": {"type": "group", "objects": [{"type": "sphere", "radius": 1}]})", "",
          "shapes.g.objects[0].radius: unknown key"},
-        {R"("g": {"type": "group", "objects": [{"type": "instance", "shape": "ball", "material": "lamp"}]})", "",
-         "shapes.g.objects[0].material: an instance cannot emit light"},
+        {R"("g": {"type": "group", "objects": [{"type": "instance", "shape": "lens", "material": "lamp"}]})", "",
+         "shapes.g.objects[0].material: an instance cannot emit light (a CSG solid is not sampled as a light)"},
     };
     for (const Case& c : cases) {
         std::string json = scene_with_shapes(c.shapes, c.objects);
@@ -256,4 +258,35 @@ TEST_CASE("groups: cycles, materials on groups, shears and unknown members are e
         CHECK(error.find(c.expected) != std::string::npos);
         if (error.find(c.expected) == std::string::npos) MESSAGE(error);
     }
+}
+
+TEST_CASE("emitting instances are lights: their primitives copied into the world, as the same objects placed directly") {
+    const std::string mesh = R"({"type": "mesh", "file": "../meshes/cbox_blocks.obj"})";
+    const std::string t = R"({"scale": 0.01, "rotate": [0, 1, 0, 30], "translate": [1, 2, 3]})";
+    std::string shapes = R"(, "shapes": {"m": )" + mesh + R"(, "ball": {"type": "sphere", "radius": 0.5},
+        "lamps": {"type": "group", "objects": [{"type": "instance", "shape": "ball", "material": "lamp", "transform": {"translate": [0, 3, 0]}},
+                                               {"type": "instance", "shape": "m", "material": "white"}]}})";
+    Scene inst = parse_json_scene(std::string("{") + kMaterials + shapes + R"(, "objects": [
+        {"type": "instance", "shape": "m", "material": "lamp", "transform": )" + t + R"(},
+        {"type": "instance", "shape": "lamps", "transform": {"scale": 2}}]})",
+                                  std::string(PT_SOURCE_DIR) + "/assets/scenes/instances_test.json");
+    Scene flat = parse_json_scene(std::string("{") + kMaterials + R"(, "objects": [
+        {"type": "mesh", "file": "../meshes/cbox_blocks.obj", "material": "lamp", "transform": )" + t + R"(},
+        {"type": "sphere", "center": [0, 6, 0], "radius": 1, "material": "lamp"}]})",
+                                  std::string(PT_SOURCE_DIR) + "/assets/scenes/instances_test.json");
+    // The emitting placements became primitives; the white one stayed an instance.
+    REQUIRE(inst.triangles.size() == flat.triangles.size());
+    REQUIRE(inst.spheres.size() == 1);
+    CHECK(inst.instances.size() == 1);
+    CHECK(inst.emitters.size() == flat.emitters.size());
+    CHECK(inst.emitters.size() == inst.triangles.size() + 1);
+    for (size_t i = 0; i < inst.triangles.size(); ++i) {
+        Triangle a = inst.triangle(uint32_t(i)), b = flat.triangle(uint32_t(i));
+        CHECK(close(a.p0, b.p0));
+        CHECK(close(a.p1, b.p1));
+        CHECK(close(a.p2, b.p2));
+    }
+    CHECK(close(inst.spheres[0].sphere.center, Vec3(0, 6, 0)));
+    CHECK(inst.spheres[0].sphere.radius == doctest::Approx(1));
+    CHECK(inst.materials[inst.spheres[0].material].name == "lamp");
 }
