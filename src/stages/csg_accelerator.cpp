@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/counters.h"
 #include "core/math.h"
 #include "scene/scene.h"
 
@@ -39,12 +40,14 @@ class CrossingBvh {
         stack[top++] = 0;
         while (top > 0) {
             const Node& node = nodes_[stack[--top]];
+            ++thread_counters().nodes_visited;
             if (!enters(node.box, ray, inv_d)) continue;
             if (node.count == 0) {
                 stack[top++] = node.second;
                 stack[top++] = uint32_t(&node - nodes_.data()) + 1;
                 continue;
             }
+            thread_counters().primitive_tests += node.count;
             for (uint32_t k = node.first; k < node.first + node.count; ++k) {
                 const Triangle& tri = triangles_[k];
                 std::optional<Hit> h = reference::intersect_triangle_watertight(tri, line);
@@ -157,9 +160,11 @@ class CsgAccelerator : public Accelerator {
     CsgSpans spans(uint32_t index, const Ray& ray) const {
         const CsgNode& node = tree_.nodes[index];
         if (node.op == CsgOp::leaf) {
-            if (node.sphere)
+            if (node.sphere) {
+                ++thread_counters().primitive_tests;
                 return csg_sphere_spans(shape_.spheres[node.first].sphere, ray,
                                         uint32_t(shape_.triangles.size()) + node.first);
+            }
             std::vector<CsgCrossing> crossings;
             meshes_[index]->crossings(ray, node.inverted, crossings);
             return csg_spans_of_crossings(std::move(crossings));
