@@ -185,7 +185,14 @@ struct ClassRun {
         } else {
             const std::string work = build_dir + "/slot" + std::to_string(slot);
             ClassBuildResult b = build_submission(tools, work, s, keys, dir + "/build.log");
-            if (!b.ok) {
+            if (!b.ok && b.internal) {
+                rec.outcome = "grading failed";
+                rec.note = "the build of the runners failed (" + b.first_error + "; see build.log)";
+                report = made_report(manifests, s, o, "not graded: " + rec.note);
+                write_reports(report, dir);
+                std::lock_guard<std::mutex> lock(mutex);
+                ++internal_failures;
+            } else if (!b.ok) {
                 rec.outcome = "does not compile";
                 rec.note = b.first_error + (missing.empty() ? "" : "; " + rec.note);
                 report = made_report(manifests, s, o, "does not compile: " + b.first_error);
