@@ -330,7 +330,7 @@ int run_class(const GradeOptions& o) {
                                 std::max(1, hw / jobs), o.build_timeout};
     run.child_threads = o.threads_given ? o.threads : std::max(1, hw / jobs);
     run.grade_exe = self_exe();
-    run.progress = isatty(2) != 0;
+    run.progress = isatty(2) != 0 && !o.quiet;  // as the renderers' progress bar
     if (!o.quiet)
         std::printf("grade: %zu of %zu submissions in %s (shard %d/%d), %d at a time\n", run.todo.size(),
                     all.size(), shown(o.class_dir).c_str(), o.shard, o.shards, jobs);
