@@ -98,6 +98,8 @@ std::unique_ptr<Integrator> make_integrator(IntegratorKind kind) {
             return make_path_integrator();
         case IntegratorKind::volpath:
             return make_volpath_integrator();
+        case IntegratorKind::bdpt:
+            return make_bdpt_integrator();
         case IntegratorKind::pm:
             return make_pm_integrator();
         case IntegratorKind::sppm:
