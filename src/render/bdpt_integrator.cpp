@@ -30,7 +30,7 @@ namespace {
 class BdptIntegrator final : public Integrator {
   public:
     Color Li(const RenderContext& context, const Ray& ray, Rng& rng) const override {
-        const BdptStage stage = reference_bdpt_stage();
+        const BdptStage& stage = context.stages.bdpt;
         const RenderSettings& settings = context.settings;
         SplatFilm* film = current_splat_film();
         if (film) film->count_path();

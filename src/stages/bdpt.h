@@ -106,9 +106,6 @@ double mis_weight(const MisVertex* light, int s, const MisVertex* camera, int t,
                   MisHeuristic heuristic);
 }  // namespace student
 
-/// The reference's table (until the stage table carries `bdpt`).
-BdptStage reference_bdpt_stage();
-
 // Framework helpers (reference only; students call them).
 
 /// The camera subpath of camera ray `ray`: the camera vertex, then

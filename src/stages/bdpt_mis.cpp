@@ -45,11 +45,3 @@ double mis_weight(const MisVertex* light, int s, const MisVertex* camera, int t,
 }
 
 }  // namespace pt::reference
-
-namespace pt {
-
-BdptStage reference_bdpt_stage() {
-    return {reference::random_walk, reference::connect, reference::mis_weight};
-}
-
-}  // namespace pt

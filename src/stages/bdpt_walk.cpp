@@ -90,7 +90,7 @@ int random_walk(const RenderContext& context, const Ray& ray, const Color& beta,
 std::vector<PathVertex> camera_subpath(const RenderContext& context, const BdptStage& stage,
                                        const Ray& ray, Rng& rng) {
     std::vector<PathVertex> path;
-    path.reserve(size_t(context.settings.max_depth) + 3);
+    path.reserve(size_t(std::min(context.settings.max_depth, 16)) + 3);
     PathVertex z0;
     z0.kind = VertexKind::camera;
     z0.p = ray.o;
@@ -111,7 +111,7 @@ std::vector<PathVertex> light_subpath(const RenderContext& context, const BdptSt
     const Vec2 u_pos = rng.next_2d(), u_dir = rng.next_2d();
     const LightEmission e = light->sample_Le(u_pos, u_dir);
     if (!e.valid() || e.Le.is_black()) return path;
-    path.reserve(size_t(context.settings.max_depth) + 1);
+    path.reserve(size_t(std::min(context.settings.max_depth, 16)) + 1);
     PathVertex y0;
     y0.kind = VertexKind::light;
     y0.light = light;

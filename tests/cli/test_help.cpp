@@ -14,7 +14,7 @@ TEST_CASE("every executable, bench subcommand, tool and script answers --help wi
     const std::string tools = std::string(PT_BIN_DIR) + "/../tests/";
     const std::string commands[] = {
         bin_path("pathtracer"), bin_path("part1"), bin_path("part2"), bin_path("part3"), bin_path("part4"),
-        bin_path("part5"), bin_path("part6"), bin_path("part8"), bin_path("grade"), bin_path("imgdiff"), bin_path("part9"), bin_path("make_sky"), bin_path("make_cloud"), bin_path("bench"),
+        bin_path("part5"), bin_path("part6"), bin_path("part7"), bin_path("part8"), bin_path("grade"), bin_path("imgdiff"), bin_path("part9"), bin_path("make_sky"), bin_path("make_cloud"), bin_path("bench"),
         bin_path("bench") + " bvh", bin_path("bench") + " scaling", bin_path("bench") + " effects",
         bin_path("bench") + " accuracy", bin_path("bench") + " cycles", bin_path("bench") + " accel",
         tools + "ray_cost", tools + "direct_compare",
