@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "apps/number_flags.h"
+#include "apps/tool_main.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "image/colormap.h"
@@ -252,19 +253,12 @@ int compare_dirs(const ImgdiffOptions& o) {
 }  // namespace pt
 
 int main(int argc, char** argv) {
-    using namespace pt;
-    try {
-        ImgdiffOptions o = parse(std::vector<std::string>(argv + 1, argv + argc));
+    return pt::run_tool("imgdiff", argc, argv, [](const std::vector<std::string>& args) {
+        pt::ImgdiffOptions o = pt::parse(args);
         if (o.help) {
-            std::cout << kUsage;
-            return kExitOk;
+            std::cout << pt::kUsage;
+            return int(pt::kExitOk);
         }
-        return o.dir ? compare_dirs(o) : compare_pair(o);
-    } catch (const InputError& e) {
-        std::cerr << "imgdiff: error: " << e.what() << "\n";
-        return kExitBadInput;
-    } catch (const std::exception& e) {
-        std::cerr << "imgdiff: internal error: " << e.what() << "\n";
-        return kExitFailure;
-    }
+        return o.dir ? pt::compare_dirs(o) : pt::compare_pair(o);
+    });
 }

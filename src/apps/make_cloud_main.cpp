@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "apps/number_flags.h"
+#include "apps/tool_main.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/hash.h"
@@ -109,14 +110,4 @@ int run(const std::vector<std::string>& args) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-    try {
-        return run(std::vector<std::string>(argv + 1, argv + argc));
-    } catch (const pt::InputError& e) {
-        std::cerr << "make_cloud: error: " << e.what() << "\n";
-        return pt::kExitBadInput;
-    } catch (const std::exception& e) {
-        std::cerr << "make_cloud: internal error: " << e.what() << "\n";
-        return pt::kExitFailure;
-    }
-}
+int main(int argc, char** argv) { return pt::run_tool("make_cloud", argc, argv, run); }

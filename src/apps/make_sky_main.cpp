@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "apps/number_flags.h"
+#include "apps/tool_main.h"
 #include "core/error.h"
 #include "image/image_io.h"
 #include "scene/environment_map.h"
@@ -41,14 +42,4 @@ int run(const std::vector<std::string>& args) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-    try {
-        return run(std::vector<std::string>(argv + 1, argv + argc));
-    } catch (const pt::InputError& e) {
-        std::cerr << "make_sky: error: " << e.what() << "\n";
-        return pt::kExitBadInput;
-    } catch (const std::exception& e) {
-        std::cerr << "make_sky: internal error: " << e.what() << "\n";
-        return pt::kExitFailure;
-    }
-}
+int main(int argc, char** argv) { return pt::run_tool("make_sky", argc, argv, run); }
