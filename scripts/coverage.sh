@@ -43,4 +43,4 @@ if [ "$status" -ge 2 ]; then
   exit 2
 fi
 [ "$status" -eq 0 ] || echo "coverage: note: the solution did not earn full marks (see $build/coverage_grade/report.md)"
-python3 "$root/scripts/coverage_report.py" "$build" "$student" "$root/assignments"
+python3 "$root/scripts/coverage_report.py" "$build" "$student" "$root/assignments" "$solution"

@@ -25,6 +25,7 @@ enum class Bug {
     weight_without_pdf,  ///< weight = f |cos theta_i|: the division by the pdf forgotten
     delta_light_skipped,     ///< step 6 left out: nothing seen through a mirror or glass
     delta_light_uncounted,   ///< step 6 without "counted": light after a delta bounce with -o 0 too
+    sample_unchecked,        ///< step 3 without its check: an invalid sample (pdf 0) divides
 };
 
 template <Bug bug>
@@ -43,7 +44,7 @@ Color bounce(const RenderContext& context, const Ray& ray, const SurfaceInteract
         L = context.stages.direct.one_bounce_radiance(context, ray, isect, rng);
     if (bounces == m && !(bsdf.is_delta() && counted)) return L;
     BSDFSample bs = bsdf.sample_f(wo, rng.next_2d());
-    if (!bs.valid() || bs.f.is_black()) return L;
+    if (bug != Bug::sample_unchecked && (!bs.valid() || bs.f.is_black())) return L;
     Color weight = bs.f;
     if (bug != Bug::weight_without_cos) weight *= std::fabs(bs.wi.z);
     if (bug != Bug::weight_without_pdf) weight /= bs.pdf;
@@ -71,6 +72,7 @@ enum class CameraBug {
     emission_only_at_m0,  ///< zero-bounce light only with -m 0: lost with -o 1
     sky_forgotten,        ///< a camera ray that misses is black, also with -o 1
     sky_always,           ///< a camera ray that misses sees the sky, also with -o 0
+    zero_without_m0,      ///< zero-bounce light only with -o 1: -m 0 -o 0 is black
 };
 
 template <CameraBug bug>
@@ -79,6 +81,7 @@ Color camera_ray(const RenderContext& context, const Ray& ray, Rng& rng) {
     bool zero = settings.accumulate_bounces || settings.max_depth == 0;
     if (bug == CameraBug::emission_always) zero = true;
     if (bug == CameraBug::emission_only_at_m0) zero = settings.max_depth == 0;
+    if (bug == CameraBug::zero_without_m0) zero = settings.accumulate_bounces;
     std::optional<SurfaceInteraction> isect = context.intersect(ray);
     if (!isect) {
         if (bug == CameraBug::sky_forgotten) return Color(0);

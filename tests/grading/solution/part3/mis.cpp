@@ -59,8 +59,8 @@ Color estimate_direct_lighting_mis(const RenderContext& context, const Ray& ray,
     for (int j = 0; j < nb; ++j) {
         BSDFSample bs = bsdf.sample_f(wo, rng.next_2d());
         if (!bs.valid()) continue;
+        // A valid sample of a BSDF that only reflects lies above the surface.
         const double cos = both_sides ? std::fabs(bs.wi.z) : bs.wi.z;
-        if (cos <= 0) continue;
         const Vec3 wi = bsdf.to_world(bs.wi);
         const Ray bounce = isect.spawn_ray(wi);
         std::optional<SurfaceInteraction> hit = context.intersect(bounce);
