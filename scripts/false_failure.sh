@@ -44,6 +44,8 @@ all_groups=(
   "lights|3|part3.5|every kind|0"
   "sky41|4|part4.1|mirror, glass and sky|0"
   "sky42|4|part4.2|sky|0"
+  "mis38|3|part3.8|a mirror, rough gold|0"
+  "gold41|4|part4.1|rough gold and frosted glass|0"
 )
 
 # Round-robin over the groups (seeds 1.. of every group, then the next

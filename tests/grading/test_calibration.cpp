@@ -82,6 +82,8 @@ std::map<size_t, Figures> measure(const TaskSpec& task, const Stages& student, i
     for (int seed = first; seed < first + seeds; ++seed) {
         TaskResult r = grade_task(task, environment(student, uint64_t(seed)));
         *task_failures += r.status != TaskStatus::pass;
+        if (r.status != TaskStatus::pass)  // which seed, and why: to find what fails
+            std::printf("  seed %d fails: %s\n", seed, r.message.c_str());
         for (size_t i = 0; i < r.images.size(); ++i) {
             Figures& c = f[i];
             c.failures += !r.images[i].pass;
