@@ -40,6 +40,8 @@ images=(
   "adaptive_cbox.png|-r 256 256 -s 1024 -a 32 0.05 assets/scenes/cbox.json"
   "glossy.png|-r 640 256 -s 64 -m 8 assets/scenes/glossy.json"
   "textures.png|-r 512 256 -s 64 -m 4 assets/scenes/textures.json"
+  "csg.png|-r 512 256 -s 64 -m 6 assets/scenes/csg.json"
+  "groups.png|-r 512 256 -s 32 -m 4 assets/scenes/groups.json"
   "camera_orthographic.png|-r 256 256 -s 64 -m 4 assets/scenes/camera_orthographic.json"
   "camera_fisheye.png|-r 256 256 -s 64 -m 4 assets/scenes/camera_fisheye.json"
   "mirror_pm.png|-r 200 150 -s 16 --integrator pm assets/scenes/caustic_mirror.json"

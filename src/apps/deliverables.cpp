@@ -101,6 +101,10 @@ int render_deliverables(int part, const std::string& dir, int threads) {
         if (threads > 0) argv_text.push_back("-t"), argv_text.push_back(std::to_string(threads));
         std::vector<char*> argv;
         for (std::string& a : argv_text) argv.push_back(a.data());
+        // An image left from an earlier run must not pass for this code's.
+        const std::string image = dir + "/" + d.name + ".png", rate = dir + "/" + d.name + "_rate.png";
+        std::filesystem::remove(image, ec);
+        std::filesystem::remove(rate, ec);
         std::cerr << program << ": deliverable " << d.name << ": " << command_line(args) << "\n";
         auto start = std::chrono::steady_clock::now();
         int code = run_render_app(int(argv.size()), argv.data(), program, StageSet::of_part(part));
@@ -110,6 +114,10 @@ int render_deliverables(int part, const std::string& dir, int threads) {
         page << "<figure>\n";
         if (code == 0) {
             page << "<img src=\"" << d.name << ".png\" alt=\"" << html_escape(d.caption) << "\">\n";
+            // Adaptive sampling (-a) writes the sample-rate image beside it.
+            if (std::filesystem::exists(rate))
+                page << "<img src=\"" << d.name << "_rate.png\" alt=\"the sample rate of " << html_escape(d.name)
+                     << "\">\n";
         } else {
             page << "<p><b>Not rendered</b> (exit code " << code
                  << (code == 3 ? ": a function is not implemented yet" : "") << ").</p>\n";

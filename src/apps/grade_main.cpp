@@ -5,12 +5,14 @@
 // passes, 1 some task fails or is not implemented, 2 bad input (flags,
 // manifests, scenes). See docs/grading.md.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <sstream>
 #include <thread>
 
+#include "apps/grade_options.h"
 #include "apps/number_flags.h"
 #include "core/error.h"
 #include "grade/check_registry.h"
@@ -23,26 +25,16 @@
 namespace pt {
 namespace {
 
-struct GradeOptions {
-    std::string out_dir = "grade_report";
-    std::string manifests_dir = PT_DEFAULT_ASSIGNMENTS_DIR;
-    std::string assets_dir = PT_DEFAULT_ASSETS_DIR;
-    std::string cache_dir = PT_DEFAULT_GRADE_CACHE_DIR;
-    uint64_t seed = 1;
-    int threads = std::max(1u, std::thread::hardware_concurrency());
-    std::vector<int> parts;          ///< empty = all parts with a manifest
-    std::vector<std::string> tasks;  ///< empty = all tasks
-    double timeout = 600;            ///< seconds per task in its runner; 0 = no limit
-    double budget = 0;               ///< seconds for the whole submission; 0 = no limit
-    bool sandbox = true;             ///< bubblewrap around the runners
-    bool quiet = false, help = false, list_checks = false;
-};
-
 const char* kUsage =
     "usage: grade [--out DIR] [--seed N] [--part N,...] [--task ID,...] [-t N] [-q] [--timeout S]\n"
     "             [--budget S] [--no-sandbox]\n"
     "             [--cache DIR | --no-cache] [--manifests DIR] [--assets DIR] [--list-checks]\n"
-    "Grades the student code this build was made with (-DPT_STUDENT_DIR) against the reference.\n"
+    "       grade --class SUBMISSIONS/ --out REPORTS/ [-j N] [--shard K/N] [--build-dir DIR]\n"
+    "             [--build-timeout S] [the flags above]\n"
+    "       grade --merge REPORTS1/ REPORTS2/ ... --out ALL/\n"
+    "Grades the student code this build was made with (-DPT_STUDENT_DIR) against the reference;\n"
+    "with --class, every subfolder of SUBMISSIONS/ (one student's copy of assignments/, or of\n"
+    "some of its parts), each built against this build (docs/grading.md).\n"
     "  --out DIR        where report.md, report.json, report.html and images/ go    "
     "[grade_report]\n"
     "  --seed N         seeds the random inputs and the student's renders           [1]\n"
@@ -64,6 +56,16 @@ const char* kUsage =
     "  --assets DIR     scene paths in the manifests are relative to it             [the project's "
     "assets/]\n"
     "  --list-checks    list the registered checks and their parameters\n"
+    "  --class DIR      grade every subfolder of DIR into --out DIR/NAME/, plus gradebook.csv\n"
+    "                   and summary.{md,html} in --out\n"
+    "  -j N             --class: submissions built and graded at a time              [1]\n"
+    "  --shard K/N      --class: grade only every N-th submission (by name), from the K-th\n"
+    "  --build-timeout S  --class: seconds per configure and build of a submission   [600]\n"
+    "  --build-dir DIR  --class: the workers' build folders (reused by later runs;\n"
+    "                   never two runs at once)                                   [OUT/.build]\n"
+    "  --merge DIR...   join the --out folders of shards into --out: one gradebook\n"
+    "  --runners DIR, --student-dir DIR, --not-submitted N,...   (what --class passes to the\n"
+    "                   grade of one submission: its runners, its folder, its missing parts)\n"
     "Exit codes: 0 every task passes, 1 some task fails or is not implemented, 2 bad input.\n";
 
 std::vector<std::string> split(const std::string& list) {
@@ -91,10 +93,38 @@ GradeOptions parse(const std::vector<std::string>& args) {
             o.quiet = true;
         } else if (a == "--out") {
             o.out_dir = value();
+            o.out_given = true;
+        } else if (a == "--class") {
+            o.class_dir = value();
+        } else if (a == "-j") {
+            o.jobs = int(parse_whole_number(a, value(), 1, 256));
+        } else if (a == "--shard") {
+            const std::string v = value();
+            const size_t slash = v.find('/');
+            if (slash == std::string::npos)
+                throw InputError("--shard: expected K/N (e.g. 2/4), got '" + v + "'");
+            o.shards = int(parse_whole_number("--shard N", v.substr(slash + 1), 1, 100000));
+            o.shard = int(parse_whole_number("--shard K", v.substr(0, slash), 1, o.shards));
+        } else if (a == "--build-dir") {
+            o.build_dir = value();
+        } else if (a == "--build-timeout") {
+            o.build_timeout = double(parse_whole_number(a, value(), 1, 86400));
+        } else if (a == "--merge") {
+            while (i + 1 < args.size() && !args[i + 1].empty() && args[i + 1][0] != '-')
+                o.merge_dirs.push_back(args[++i]);
+            if (o.merge_dirs.empty()) throw InputError("--merge: expected one or more report folders");
+        } else if (a == "--runners") {
+            o.runners_dir = value();
+        } else if (a == "--student-dir") {
+            o.student_dir = value();
+        } else if (a == "--not-submitted") {
+            for (const std::string& p : split(value()))
+                o.not_submitted.push_back(int(parse_whole_number("--not-submitted", p, 1, 1000)));
         } else if (a == "--seed") {
             o.seed = uint64_t(parse_whole_number(a, value(), 0, (1ll << 62)));
         } else if (a == "-t") {
             o.threads = int(parse_whole_number(a, value(), 1, 1024));
+            o.threads_given = true;
         } else if (a == "--timeout") {
             o.timeout = double(parse_whole_number(a, value(), 0, 86400));
         } else if (a == "--budget") {
@@ -119,6 +149,10 @@ GradeOptions parse(const std::vector<std::string>& args) {
         }
     }
     if (o.out_dir.empty()) throw InputError("--out: expected a folder");
+    if (!o.class_dir.empty() && !o.merge_dirs.empty())
+        throw InputError("--class and --merge: one or the other");
+    if (o.class_dir.empty() && (o.jobs != 1 || o.shards != 1))
+        throw InputError(o.jobs != 1 ? "-j: only with --class" : "--shard: only with --class");
     return o;
 }
 
@@ -130,9 +164,10 @@ std::string runner_dir() {
 }
 
 void print_task(const TaskResult& t) {
-    const char* word = t.status == TaskStatus::pass
-                           ? "PASS"
-                           : (t.status == TaskStatus::fail ? "FAIL" : "NOT IMPLEMENTED");
+    const char* word = t.status == TaskStatus::pass   ? "PASS"
+                       : t.status == TaskStatus::fail ? "FAIL"
+                       : t.status == TaskStatus::not_submitted ? "NOT SUBMITTED"
+                                                               : "NOT IMPLEMENTED";
     std::printf("grade: %-8s %-15s %5s / %-4s %s: %s\n", t.id.c_str(), word,
                 format_points(t.points).c_str(), format_points(t.max_points).c_str(),
                 t.name.c_str(), t.message.c_str());
@@ -195,7 +230,8 @@ int run(const GradeOptions& o) {
     Isolation iso;
     iso.timeout = o.timeout > 0 ? o.timeout : 1e9;
     iso.budget = o.budget;
-    const std::string runners = runner_dir();
+    const std::string runners =
+        o.runners_dir.empty() ? runner_dir() : std::filesystem::absolute(o.runners_dir).string();
     const std::string assets = std::filesystem::absolute(o.assets_dir).string();
     Sandbox sandbox = make_sandbox({runners, assets, std::filesystem::absolute(o.manifests_dir).string()},
                                    o.sandbox);
@@ -209,12 +245,41 @@ int run(const GradeOptions& o) {
                                         "--threads", std::to_string(o.threads),
                                         "--assets", assets};
     };
+    const std::string student_dir = o.student_dir.empty() ? PT_STUDENT_DIR_PATH : o.student_dir;
     if (!o.quiet)
-        std::printf("grade: student code %s, seed %llu\n", PT_STUDENT_DIR_PATH,
+        std::printf("grade: student code %s, seed %llu\n", student_dir.c_str(),
                     (unsigned long long)o.seed);
-    GradeReport report = grade_all(manifests, env, o.quiet ? nullptr : print_task, iso);
+    // The parts a class submission lacks (--not-submitted, from --class) are
+    // not run; their tasks are listed as "not submitted" in manifest order.
+    auto missing = [&](int part) {
+        return std::find(o.not_submitted.begin(), o.not_submitted.end(), part) != o.not_submitted.end();
+    };
+    std::vector<PartManifest> submitted;
+    for (const PartManifest& m : manifests)
+        if (!missing(m.part)) submitted.push_back(m);
+    GradeReport report = grade_all(submitted, env, o.quiet ? nullptr : print_task, iso);
+    std::vector<TaskResult> all;
+    report.parts.clear();
+    for (const PartManifest& m : manifests) {
+        report.parts.push_back("Part " + std::to_string(m.part) + (m.title.empty() ? "" : ": " + m.title));
+        for (const TaskSpec& t : m.tasks) {
+            if (!missing(m.part)) {
+                for (const TaskResult& r : report.tasks)
+                    if (r.id == t.id) all.push_back(r);
+                continue;
+            }
+            TaskResult r;
+            r.part = t.part, r.id = t.id, r.name = t.name, r.check = t.check, r.type = t.type;
+            r.status = TaskStatus::not_submitted, r.max_points = t.points, r.value = NAN;
+            r.message = "not submitted: the submission has no part" + std::to_string(t.part) +
+                        "/ folder with a .cpp file";
+            all.push_back(r);
+            if (!o.quiet) print_task(r);
+        }
+    }
+    report.tasks = all;
     report.notes.insert(report.notes.begin(), notes.begin(), notes.end());
-    report.student_dir = PT_STUDENT_DIR_PATH;
+    report.student_dir = student_dir;
     write_reports(report, o.out_dir);
     std::printf(
         "grade: %s / %s points, %s; reports in %s/report.{md,html,json} (%.1f s)\n",
@@ -235,6 +300,8 @@ int main(int argc, char** argv) {
             std::cout << kUsage;
             return kExitOk;
         }
+        if (!o.class_dir.empty()) return run_class(o);
+        if (!o.merge_dirs.empty()) return run_merge(o);
         return run(o);
     } catch (const InputError& e) {
         std::cerr << "grade: error: " << e.what() << "\n";

@@ -91,6 +91,9 @@ std::vector<FlagSpec> flag_table() {
              std::string h = one_of(f, v[0], {"power", "balance"});
              o.render.mis_heuristic = h == "power" ? MisHeuristic::power : MisHeuristic::balance;
          }},
+        {{"--transmittance"}, 1, [](Options& o, S f, V v) {
+             o.render.delta_tracking_shadows = one_of(f, v[0], {"ratio", "delta"}) == "delta";
+         }},
         {{"--rr-depth"}, 1, [](Options& o, S f, V v) {
              // A whole number, or "off": no roulette (every path runs to -m).
              if (v[0] == "off") {
@@ -247,6 +250,7 @@ std::string usage(const std::string& program, StageSet default_student) {
       << "  -q              no progress bar\n"
       << "  --direct light|hemisphere|mis                                          [light]\n"
       << "  --mis-heuristic power|balance  MIS weights (--direct mis, path tracing)  [power]\n"
+      << "  --transmittance ratio|delta    shadow rays through density grids: ratio or delta tracking  [ratio]\n"
       << "  --rr-depth N|off  Russian roulette after N bounces, or none            [3]\n"
       << "  --clamp X       scale samples down to max component X (biased)         [off]\n"
       << "  --triangle moller|watertight                                           [moller]\n"

@@ -72,6 +72,7 @@ const char* css_class(TaskStatus s) {
         case TaskStatus::fail:
             return "fail";
         case TaskStatus::not_implemented:
+        case TaskStatus::not_submitted:
             return "todo";
     }
     return "";
@@ -85,6 +86,8 @@ const char* badge(TaskStatus s) {
             return "FAIL";
         case TaskStatus::not_implemented:
             return "NOT IMPLEMENTED";
+        case TaskStatus::not_submitted:
+            return "NOT SUBMITTED";
     }
     return "";
 }

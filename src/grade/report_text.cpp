@@ -17,7 +17,9 @@ std::string format_points(double points) {
 }
 
 std::string format_figure(const TaskResult& r) {
-    if (r.status == TaskStatus::not_implemented || std::isnan(r.value)) return "-";
+    if (r.status == TaskStatus::not_implemented || r.status == TaskStatus::not_submitted ||
+        std::isnan(r.value))
+        return "-";
     // The relation that holds, so that a failing figure reads "4.7 > 1e-06".
     bool at_most = r.comparison == "<=";
     bool holds = at_most ? r.value <= r.threshold : r.value >= r.threshold;
@@ -45,6 +47,8 @@ const char* status_word(TaskStatus s) {
             return "FAIL";
         case TaskStatus::not_implemented:
             return "NOT IMPLEMENTED";
+        case TaskStatus::not_submitted:
+            return "NOT SUBMITTED";
     }
     return "?";
 }

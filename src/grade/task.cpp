@@ -31,6 +31,8 @@ const char* to_string(TaskStatus status) {
             return "fail";
         case TaskStatus::not_implemented:
             return "not implemented";
+        case TaskStatus::not_submitted:
+            return "not submitted";
     }
     return "?";
 }

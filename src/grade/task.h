@@ -35,8 +35,10 @@ struct TaskSpec {
     std::string manifest;  ///< the file it came from, for error messages
 };
 
-enum class TaskStatus { pass, fail, not_implemented };
-/// "pass", "fail", "not implemented".
+/// not_submitted: the submission has no folder of the task's part (grade
+/// --class); the task is not run.
+enum class TaskStatus { pass, fail, not_implemented, not_submitted };
+/// "pass", "fail", "not implemented", "not submitted".
 const char* to_string(TaskStatus status);
 
 /// One rendered comparison of an image task, with its pictures and figures.

@@ -16,7 +16,8 @@ double number_or_nan(const json& j) {
 }
 
 TaskStatus parse_status(const std::string& s) {
-    for (TaskStatus t : {TaskStatus::pass, TaskStatus::fail, TaskStatus::not_implemented})
+    for (TaskStatus t : {TaskStatus::pass, TaskStatus::fail, TaskStatus::not_implemented,
+                         TaskStatus::not_submitted})
         if (s == to_string(t)) return t;
     return TaskStatus::fail;
 }

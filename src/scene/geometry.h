@@ -38,6 +38,9 @@ struct TriangleRecord {
 struct SphereRecord {
     Sphere sphere;
     uint32_t material;
+    /// Its surface faces inwards: a sphere subtracted by CSG (scene/csg.h),
+    /// whose visible side bounds the hole it leaves.
+    bool inward = false;
 };
 
 }  // namespace pt

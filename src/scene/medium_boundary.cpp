@@ -14,7 +14,7 @@ uint32_t material_of_face(const MeshData& mesh, size_t f) {
 }
 
 /// Checks the faces `faces` of `mesh`; reverses them when wound inwards.
-std::string orient_part(MeshData& mesh, const std::vector<size_t>& faces, const std::string& material) {
+std::string orient_part(MeshData& mesh, const std::vector<size_t>& faces, const std::string& intro) {
     // One id per distinct position, so repeated seam vertices count as one.
     std::map<std::tuple<double, double, double>, uint32_t> welded;
     std::vector<uint32_t> id(mesh.positions.size());
@@ -41,14 +41,12 @@ std::string orient_part(MeshData& mesh, const std::vector<size_t>& faces, const 
         };
         return "the edge " + str(pa) + " - " + str(pb);
     };
-    const std::string intro = "the material \"" + material + "\" has an \"interior\" medium, so its mesh must be closed "
-                              "and consistently wound, but ";
     for (const auto& [edge, count] : directed) {
         auto reverse = directed.find({edge.second, edge.first});
         int back = reverse == directed.end() ? 0 : reverse->second;
         if (count > 1 || back > 1)
             return intro + where(edge) + " is shared by more than two triangles, or two of them are wound alike";
-        if (back == 0) return intro + where(edge) + " belongs to one triangle only (an open mesh cannot hold a medium)";
+        if (back == 0) return intro + where(edge) + " belongs to one triangle only (an open mesh has no inside)";
     }
     // The signed volume (divergence theorem): > 0 when the normals point out.
     double volume = 0;
@@ -76,10 +74,18 @@ std::string orient_medium_boundaries(MeshData& mesh, const std::vector<Material>
         if (m < materials.size() && materials[m].interior >= 0) faces_of[m].push_back(f);
     }
     for (const auto& [m, faces] : faces_of) {
-        std::string problem = orient_part(mesh, faces, materials[m].name);
+        std::string problem = orient_part(mesh, faces,
+                                          "the material \"" + materials[m].name + "\" has an \"interior\" medium, "
+                                          "so its mesh must be closed and consistently wound, but ");
         if (!problem.empty()) return problem;
     }
     return "";
+}
+
+std::string orient_closed_mesh(MeshData& mesh, const std::string& intro) {
+    std::vector<size_t> faces(mesh.faces.size());
+    for (size_t f = 0; f < faces.size(); ++f) faces[f] = f;
+    return orient_part(mesh, faces, intro);
 }
 
 }  // namespace pt

@@ -28,4 +28,8 @@ namespace pt {
 /// (for the loader's one-line error).
 std::string orient_medium_boundaries(MeshData& mesh, const std::vector<Material>& materials);
 
+/// The same check on all faces of `mesh` (a CSG operand, scene/csg.h, must
+/// have an inside too); `intro` begins the message ("..., but ").
+std::string orient_closed_mesh(MeshData& mesh, const std::string& intro);
+
 }  // namespace pt

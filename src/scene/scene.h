@@ -12,6 +12,7 @@
 #include "core/bbox.h"
 #include "core/transform.h"
 #include "scene/camera.h"
+#include "scene/csg.h"
 #include "scene/geometry.h"
 #include "scene/light.h"
 #include "scene/material.h"
@@ -26,6 +27,9 @@ struct Scene;
 struct ShapeRecord {
     std::string name;
     std::shared_ptr<const Scene> geometry;  ///< triangles and spheres only; material 0 everywhere
+    /// A CSG shape (scene/csg.h): the tree over `geometry`'s primitives,
+    /// whose leaves are closed solids; null for a plain shape.
+    std::shared_ptr<const CsgTree> csg;
 };
 
 /// One placement of a shape ({"type": "instance"}): the shape's geometry

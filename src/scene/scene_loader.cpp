@@ -1,5 +1,6 @@
 #include "scene/scene_loader.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -14,6 +15,7 @@
 #include "core/math.h"
 #include "core/memory_budget.h"
 #include "image/image_io.h"
+#include "scene/csg.h"
 #include "scene/framing.h"
 #include "scene/fresnel.h"
 #include "scene/json_reader.h"
@@ -275,6 +277,7 @@ public:
     void read_object(const JsonReader& j) {
         std::string type = j.string("type");
         if (type == "instance") return read_instance(j);
+        if (type == "csg") return read_csg_object(j);
         Transform transform = j.has("transform") ? read_transform(j.object("transform")) : Transform();
         if (type == "mesh") {
             j.allow_only({"type", "file", "material", "transform"});
@@ -315,7 +318,7 @@ public:
             mesh.material = material(j);
             add_boundary_mesh(j, mesh, transform);
         } else {
-            j.fail("type", "unknown object type \"" + type + "\" (expected mesh, sphere, quad, torus_knot or instance)");
+            j.fail("type", "unknown object type \"" + type + "\" (expected mesh, sphere, quad, torus_knot, instance or csg)");
         }
     }
 
@@ -324,9 +327,15 @@ public:
     void read_shapes(const JsonReader& root) {
         if (!root.has("shapes")) return;
         for (const auto& [name, j] : root.object_map("shapes")) {
+            if (j.string("type") == "group") {  // placed member by member (place_group)
+                j.allow_only({"type", "objects"});
+                groups_.emplace(name, j);
+                continue;
+            }
             auto shape = std::make_shared<Scene>();
             shape->path = path_;
             shape->materials.push_back(Material{});  // placeholder: instances bring their own
+            std::shared_ptr<const CsgTree> csg;
             std::string type = j.string("type");
             if (type == "mesh") {
                 j.allow_only({"type", "file", "transform"});
@@ -346,12 +355,23 @@ public:
             } else if (type == "sphere") {
                 j.allow_only({"type", "center", "radius"});
                 shape->spheres.push_back({{j.vec3("center", Vec3(0)), j.positive("radius", 1.0)}, 0});
+            } else if (type == "csg") {
+                j.allow_only({"type", "op", "operands"});
+                auto tree = std::make_shared<CsgTree>();
+                read_csg_node(j, *shape, *tree, false, 0);
+                csg = tree;
             } else {
-                j.fail("type", "unknown shape type \"" + type + "\" (expected mesh, torus_knot or sphere)");
+                j.fail("type", "unknown shape type \"" + type + "\" (expected mesh, torus_knot, sphere, csg or group)");
             }
             shape->finalize();
             shape_index_[name] = uint32_t(scene_.shapes.size());
-            scene_.shapes.push_back({name, shape});
+            scene_.shapes.push_back({name, shape, csg});
+        }
+        // Every group is checked here, placed or not: unknown names, cycles,
+        // transforms that cannot be composed, the instance count.
+        for (const auto& [name, j] : groups_) {
+            std::vector<std::string> chain;
+            place_group(name, j, Transform(), chain, false);
         }
     }
 
@@ -359,15 +379,210 @@ public:
     void read_instance(const JsonReader& j) {
         j.allow_only({"type", "shape", "transform", "material"});
         std::string name = j.string("shape");
+        if (groups_.count(name)) {
+            if (j.has("material"))
+                j.fail("material", "an instance of the group \"" + name + "\" takes no material: its members bring theirs");
+            Transform t = j.has("transform") ? read_transform(j.object("transform")) : Transform();
+            std::vector<std::string> chain;
+            place_group(name, groups_.at(name), t, chain, true);
+            return;
+        }
         auto it = shape_index_.find(name);
         if (it == shape_index_.end()) j.fail("shape", "no shape named \"" + name + "\" in \"shapes\"");
+        place_instance(j, it->second, "an instance");
+    }
+
+    /// A group ({"type": "group", "objects": [instances]}) seen through
+    /// `outer`: every member's transform composed with it, a member that is
+    /// itself a group recursively. Nested instances are flattened here into
+    /// one InstanceRecord per placed leaf shape (geometry still stored once;
+    /// the accelerator keeps two levels). `place` false only checks.
+    void place_group(const std::string& name, const JsonReader& group, const Transform& outer,
+                     std::vector<std::string>& chain, bool place) {
+        if (std::find(chain.begin(), chain.end(), name) != chain.end()) {
+            std::string cycle;
+            for (const std::string& c : chain) cycle += c + " -> ";
+            group.fail("", "groups place each other in a cycle: " + cycle + name);
+        }
+        constexpr size_t kMaxGroupDepth = 16;
+        if (chain.size() >= kMaxGroupDepth)
+            group.fail("", "groups nested more than " + std::to_string(kMaxGroupDepth) + " deep");
+        chain.push_back(name);
+        for (const JsonReader& member : group.object_array("objects")) {
+            member.allow_only({"type", "shape", "transform", "material"});
+            if (member.string("type") != "instance")
+                member.fail("type", "a group holds instances only, got \"" + member.string("type") + "\"");
+            Transform inner = member.has("transform") ? read_transform(member.object("transform")) : Transform();
+            Transform composed = compose(outer, inner, member);
+            std::string shape = member.string("shape");
+            auto sub = groups_.find(shape);
+            if (sub != groups_.end()) {
+                if (member.has("material"))
+                    member.fail("material", "an instance of the group \"" + shape + "\" takes no material: its members bring theirs");
+                place_group(shape, sub->second, composed, chain, place);
+                continue;
+            }
+            auto it = shape_index_.find(shape);
+            if (it == shape_index_.end()) member.fail("shape", "no shape named \"" + shape + "\" in \"shapes\"");
+            uint32_t m = material(member);
+            const bool emits = scene_.materials[m].is_emissive();
+            if (emits && scene_.shapes[it->second].csg)
+                member.fail("material", "an instance cannot emit light (a CSG solid is not sampled as a light)");
+            if (!place) continue;
+            if (emits) {
+                expand_emitting_instance(member, it->second, m, composed);
+                continue;
+            }
+            constexpr size_t kMaxInstances = 16u << 20;
+            if (scene_.instances.size() >= kMaxInstances)
+                member.fail("", "the groups place more than " + std::to_string(kMaxInstances) +
+                                    " instances (about 180 bytes each once flattened)");
+            add_instance(it->second, m, composed);
+        }
+        chain.pop_back();
+    }
+
+    /// outer after inner. The scene's transforms are R S + T with R a
+    /// rotation and S diagonal; R1 S1 R2 S2 is of that form when S1 is
+    /// uniform ((R1 R2)(s1 S2)) or R2 is the identity (R1 (S1 S2)), and a
+    /// shear otherwise, which the renderer's transforms cannot hold.
+    static Transform compose(const Transform& outer, const Transform& inner, const JsonReader& where) {
+        const bool inner_unrotated = inner.rows[0] == Vec3(1, 0, 0) && inner.rows[1] == Vec3(0, 1, 0) &&
+                                     inner.rows[2] == Vec3(0, 0, 1);
+        if (!outer.is_uniform_scale() && !inner_unrotated)
+            where.fail("transform", "a rotated member of a group placed with a non-uniform scale would be sheared; "
+                                    "scale the group uniformly, or scale the member itself");
+        Transform t;
+        t.scale = outer.scale * inner.scale;
+        for (int r = 0; r < 3; ++r)
+            t.rows[r] = Vec3(dot(outer.rows[r], Vec3(inner.rows[0].x, inner.rows[1].x, inner.rows[2].x)),
+                             dot(outer.rows[r], Vec3(inner.rows[0].y, inner.rows[1].y, inner.rows[2].y)),
+                             dot(outer.rows[r], Vec3(inner.rows[0].z, inner.rows[1].z, inner.rows[2].z)));
+        t.translate = outer.point(inner.translate);
+        return t;
+    }
+
+    /// {"type": "csg", "op": ..., "operands": [...], "material": M,
+    /// "transform": {...}}: a CSG shape of its own, placed as an instance
+    /// (its rays go into the tree's space by the inverse transform).
+    void read_csg_object(const JsonReader& j) {
+        j.allow_only({"type", "op", "operands", "material", "transform"});
+        auto shape = std::make_shared<Scene>();
+        shape->path = path_;
+        shape->materials.push_back(Material{});
+        auto tree = std::make_shared<CsgTree>();
+        read_csg_node(j, *shape, *tree, false, 0);
+        shape->finalize();
+        scene_.shapes.push_back({j.path_of(""), shape, tree});
+        place_instance(j, uint32_t(scene_.shapes.size() - 1), "a CSG object");
+    }
+
+    /// One node of a CSG tree and its subtree: {"type": "csg", "op",
+    /// "operands"}, or a leaf: {"type": "sphere", "center", "radius"} or
+    /// {"type": "mesh", "file", "transform"} (closed). `inverted`: the node is
+    /// subtracted an odd number of times, so its leaves are stored turned
+    /// round (scene/csg.h). Returns the node's index.
+    uint32_t read_csg_node(const JsonReader& j, Scene& shape, CsgTree& tree, bool inverted, int depth) {
+        constexpr int kMaxCsgDepth = 32;
+        if (depth > kMaxCsgDepth) j.fail("", "CSG nested more than " + std::to_string(kMaxCsgDepth) + " levels deep");
+        const uint32_t index = uint32_t(tree.nodes.size());
+        tree.nodes.emplace_back();
+        CsgNode node;
+        node.inverted = inverted;
+        std::string type = j.string("type");
+        if (type == "csg") {
+            if (depth > 0) j.allow_only({"type", "op", "operands"});
+            std::string op = j.string("op");
+            if (!parse_csg_op(op, node.op))
+                j.fail("op", "expected \"union\", \"intersection\" or \"difference\", got \"" + op + "\"");
+            std::vector<JsonReader> operands = j.object_array("operands");
+            if (operands.size() < 2)
+                j.fail("operands", "expected at least two operands, got " + std::to_string(operands.size()));
+            for (size_t k = 0; k < operands.size(); ++k) {
+                // The subtracted operands of a difference face the other way.
+                bool flip = node.op == CsgOp::difference && k > 0;
+                node.children.push_back(read_csg_node(operands[k], shape, tree, inverted != flip, depth + 1));
+            }
+        } else if (type == "sphere") {
+            j.allow_only({"type", "center", "radius"});
+            SphereRecord sphere{{j.vec3("center"), j.positive("radius")}, 0, inverted};
+            node.sphere = true;
+            node.first = uint32_t(shape.spheres.size());
+            node.count = 1;
+            shape.spheres.push_back(sphere);
+        } else if (type == "mesh") {
+            j.allow_only({"type", "file", "transform"});
+            ObjLoadOptions options;
+            options.where = j.file() + ": " + j.path_of("");
+            options.material = 0;
+            MeshData mesh = read_obj(shape, resolve(path_, j.string("file")), options);
+            std::string problem = orient_closed_mesh(mesh, "a CSG operand must be a closed, consistently wound mesh, but ");
+            if (!problem.empty()) j.fail("", problem);
+            if (inverted) {
+                for (size_t f = 0; f < mesh.faces.size(); ++f) {
+                    std::swap(mesh.faces[f][1], mesh.faces[f][2]);
+                    if (!mesh.face_normals.empty()) std::swap(mesh.face_normals[f][1], mesh.face_normals[f][2]);
+                    if (!mesh.face_uvs.empty()) std::swap(mesh.face_uvs[f][1], mesh.face_uvs[f][2]);
+                }
+                for (Vec3& n : mesh.normals) n = -n;
+            }
+            node.first = uint32_t(shape.triangles.size());
+            add_mesh(shape, mesh, read_shape_transform(j));
+            node.count = uint32_t(shape.triangles.size()) - node.first;
+        } else {
+            j.fail("type", "unknown CSG operand type \"" + type + "\" (expected sphere, mesh or csg)");
+        }
+        tree.nodes[index] = node;
+        return index;
+    }
+
+    /// An instance of shape `shape_index` with the object's material and
+    /// transform (`what` names the object in errors).
+    void place_instance(const JsonReader& j, uint32_t shape_index, const std::string& what) {
         InstanceRecord instance;
-        instance.shape = it->second;
+        instance.shape = shape_index;
         instance.material = material(j);
-        if (scene_.materials[instance.material].is_emissive())
-            j.fail("material", "an instance cannot emit light (instanced area lights are not supported); "
-                               "place an emitting object directly in \"objects\"");
-        instance.to_world = j.has("transform") ? read_transform(j.object("transform")) : Transform();
+        Transform to_world = j.has("transform") ? read_transform(j.object("transform")) : Transform();
+        if (scene_.materials[instance.material].is_emissive()) {
+            if (scene_.shapes[shape_index].csg) j.fail("material", what + " cannot emit light (a CSG solid is not sampled as a light)");
+            return expand_emitting_instance(j, shape_index, instance.material, to_world);
+        }
+        add_instance(instance.shape, instance.material, to_world);
+    }
+
+    /// An emitting instance: its shape's primitives copied into the world,
+    /// transformed, since light sampling (scene/light_set.h) picks world
+    /// triangles and spheres by area. Lamps are few and small, so the copy
+    /// is cheap where it happens; everything else stays instanced.
+    void expand_emitting_instance(const JsonReader& j, uint32_t shape_index, uint32_t material, const Transform& t) {
+        const Scene& g = *scene_.shapes[shape_index].geometry;
+        if (!g.spheres.empty() && !t.is_uniform_scale())
+            j.fail("transform", "an emitting instance of a sphere needs a uniform scale (an ellipsoid is not sampled as a light)");
+        for (const SphereRecord& s : g.spheres)
+            scene_.spheres.push_back({{t.point(s.sphere.center), s.sphere.radius * t.scale.x}, material});
+        if (g.triangles.empty()) return;
+        check_geometry_budget(scene_.triangles.size() + g.triangles.size(), scene_.positions.size() + g.positions.size(),
+                              j.file() + ": " + j.path_of("") + " (an emitting instance, copied)");
+        MeshData mesh;
+        mesh.positions = g.positions;
+        mesh.normals = g.normals;
+        mesh.uvs = g.uvs;
+        mesh.material = material;
+        const bool smooth = g.triangles[0].n[0] != kNoIndex;  // a mesh is smooth everywhere or nowhere
+        for (size_t f = 0; f < g.triangles.size(); ++f) {
+            const TriangleRecord& r = g.triangles[f];
+            mesh.faces.push_back({r.v[0], r.v[1], r.v[2]});
+            if (smooth) mesh.face_normals.push_back({r.n[0], r.n[1], r.n[2]});
+            if (!g.triangle_uvs.empty()) mesh.face_uvs.push_back(g.triangle_uvs[f]);
+        }
+        add_mesh(scene_, mesh, t);
+    }
+
+    void add_instance(uint32_t shape, uint32_t material, const Transform& to_world) {
+        InstanceRecord instance;
+        instance.shape = shape;
+        instance.material = material;
+        instance.to_world = to_world;
         const BBox& box = scene_.shapes[instance.shape].geometry->bounds;
         for (int corner = 0; corner < 8; ++corner)
             instance.bounds.expand(instance.to_world.point(
@@ -422,6 +637,7 @@ private:
     const std::string& path_;
     std::map<std::string, uint32_t> material_index_;
     std::map<std::string, uint32_t> shape_index_;
+    std::map<std::string, JsonReader> groups_;  ///< the "group" shapes, placed member by member
 };
 
 }  // namespace

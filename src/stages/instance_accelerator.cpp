@@ -7,6 +7,7 @@
 #include "core/math.h"
 #include "scene/scene.h"
 #include "stages/bvh.h"
+#include "stages/csg_accelerator.h"
 
 namespace pt {
 namespace {
@@ -46,7 +47,8 @@ class InstanceAccelerator : public Accelerator {
                         const AcceleratorSettings& settings)
         : own_(std::move(own)), scene_(scene), order_(scene.instances.size()) {
         for (const ShapeRecord& shape : scene.shapes)
-            shapes_.push_back(build_accelerator(*shape.geometry, stages, settings));
+            shapes_.push_back(shape.csg ? make_csg_accelerator(*shape.geometry, *shape.csg)
+                                        : build_accelerator(*shape.geometry, stages, settings));
         std::iota(order_.begin(), order_.end(), 0u);
         nodes_.reserve(2 * order_.size());
         build(0, uint32_t(order_.size()));

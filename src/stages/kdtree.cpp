@@ -29,7 +29,7 @@ void build_range(KdTree& tree, std::vector<uint32_t>& order, const std::vector<V
 }
 
 /// Subtrees of at most this many points are scanned, not descended.
-constexpr size_t kScanBelow = 8;
+constexpr size_t kScanBelow = 16;
 
 /// State of one k-nearest query: a max-heap of the best k found so far.
 struct KnnSearch {
@@ -37,24 +37,44 @@ struct KnnSearch {
     Vec3 p;
     size_t k;
     double max_dist2;  ///< shrinks to the k-th distance once k points are found
-    std::vector<Neighbor>& heap;
+    std::vector<Neighbor>& heap;  ///< a max-heap by dist2 once it holds k
 
+    /// Keeps point i when it is nearer than the current k-th: the first k
+    /// found are appended and then heapified once; afterwards a nearer one
+    /// replaces the farthest at the root and sifts down (one pass, half the
+    /// work of pop_heap + push_heap).
     void consider(size_t i) {
         const double d2 = (tree.points[i] - p).norm2();
         if (d2 > max_dist2) return;
-        auto farther = [](const Neighbor& a, const Neighbor& b) { return a.dist2 < b.dist2; };
-        if (heap.size() < k) {
+        const size_t n = heap.size();
+        if (n < k) {
             heap.push_back({tree.ids[i], d2});
-            std::push_heap(heap.begin(), heap.end(), farther);
-        } else {
-            std::pop_heap(heap.begin(), heap.end(), farther);
-            heap.back() = {tree.ids[i], d2};
-            std::push_heap(heap.begin(), heap.end(), farther);
+            if (n + 1 == k) {
+                std::make_heap(heap.begin(), heap.end(), farther);
+                max_dist2 = heap.front().dist2;
+            }
+            return;
         }
-        if (heap.size() == k) max_dist2 = heap.front().dist2;
+        size_t hole = 0;
+        for (size_t child = 1; child < n; child = 2 * hole + 1) {
+            if (child + 1 < n && heap[child + 1].dist2 > heap[child].dist2) ++child;
+            if (heap[child].dist2 <= d2) break;
+            heap[hole] = heap[child];
+            hole = child;
+        }
+        heap[hole] = {tree.ids[i], d2};
+        max_dist2 = heap.front().dist2;
     }
 
-    void visit(size_t lo, size_t hi) {
+    static bool farther(const Neighbor& a, const Neighbor& b) { return a.dist2 < b.dist2; }
+
+    /// Visits the subtree [lo, hi) whose cell lies at squared distance
+    /// cell_dist2 from p; offset[a] is p's distance to the cell along axis a
+    /// (0 inside). Arya and Mount's incremental distance (1993): crossing a
+    /// plane replaces one axis's term of the sum, so a far cell is skipped
+    /// when its whole box, not only its nearest plane, is beyond the k-th
+    /// distance.
+    void visit(size_t lo, size_t hi, double cell_dist2, double offset[3]) {
         // A small subtree is cheaper to scan than to descend (a bucket).
         if (hi - lo <= kScanBelow) {
             for (size_t i = lo; i < hi; ++i) consider(i);
@@ -64,16 +84,16 @@ struct KnnSearch {
         const int axis = tree.axis[mid];
         const double delta = p[axis] - tree.points[mid][axis];
         // The side of the plane that holds p first; the other side only if
-        // the plane is nearer than the current k-th distance.
-        if (delta <= 0) {
-            visit(lo, mid);
-            consider(mid);
-            if (delta * delta <= max_dist2) visit(mid + 1, hi);
-        } else {
-            visit(mid + 1, hi);
-            consider(mid);
-            if (delta * delta <= max_dist2) visit(lo, mid);
-        }
+        // its cell is nearer than the current k-th distance.
+        const bool left_first = delta <= 0;
+        visit(left_first ? lo : mid + 1, left_first ? mid : hi, cell_dist2, offset);
+        consider(mid);
+        const double old_offset = offset[axis];
+        const double far_dist2 = cell_dist2 - old_offset * old_offset + delta * delta;
+        if (far_dist2 > max_dist2) return;
+        offset[axis] = delta;
+        visit(left_first ? mid + 1 : lo, left_first ? hi : mid, far_dist2, offset);
+        offset[axis] = old_offset;
     }
 };
 
@@ -154,8 +174,10 @@ void k_nearest(const KdTree& tree, const Vec3& p, int k, double max_dist2, std::
     out.clear();
     if (k <= 0 || tree.empty() || max_dist2 < 0) return;
     KnnSearch search{tree, p, size_t(k), max_dist2, out};
-    search.visit(0, tree.size());
-    std::sort_heap(out.begin(), out.end(), [](const Neighbor& a, const Neighbor& b) { return a.dist2 < b.dist2; });
+    double offset[3] = {0, 0, 0};
+    search.visit(0, tree.size(), 0.0, offset);
+    // Fewer than k found leaves no heap: a plain sort serves both cases.
+    std::sort(out.begin(), out.end(), KnnSearch::farther);
 }
 
 }  // namespace reference

@@ -96,6 +96,12 @@ Color segment_transmittance(const RenderContext& context, const Medium& m, const
     return T;
 }
 
+Color shadow_transmittance(const RenderContext& context, Ray ray, int medium, Rng& rng) {
+    return shadow_transmittance(context, ray, medium, rng,
+                                context.settings.delta_tracking_shadows ? TrackingEstimator::delta
+                                                                        : TrackingEstimator::ratio);
+}
+
 Color shadow_transmittance(const RenderContext& context, Ray ray, int medium, Rng& rng,
                            TrackingEstimator estimator) {
     Color T(1.0);

@@ -78,9 +78,11 @@ Color segment_transmittance(const RenderContext& context, const Medium& m, const
 
 /// The transmittance along the shadow ray `ray` (its whole interval, the
 /// origin in medium `medium`): through null surfaces (changing medium as
-/// they say), 0 at any other surface.
+/// they say), 0 at any other surface. The estimator in density grids is
+/// the one --transmittance names (ratio tracking unless told otherwise).
+Color shadow_transmittance(const RenderContext& context, Ray ray, int medium, Rng& rng);
 Color shadow_transmittance(const RenderContext& context, Ray ray, int medium, Rng& rng,
-                           TrackingEstimator estimator = TrackingEstimator::ratio);
+                           TrackingEstimator estimator);
 
 /// A free flight along a ray with unit direction through medium m, up to
 /// t_max (the next surface, or infinity).

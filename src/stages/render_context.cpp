@@ -59,6 +59,7 @@ SurfaceInteraction make_interaction(const Scene& scene, const Ray& ray, const Hi
         si.p = s.center + local;
         si.p_error = gamma(6) * (abs(local) + abs(s.center));
         si.ng = local / s.radius;
+        if (scene.sphere_record(hit.primitive).inward) si.ng = -si.ng;  // subtracted by CSG
     } else {
         // Barycentric interpolation has error at most gamma(7) sum |b_i p_i|
         // (pbrt-v3 section 3.9.3), independent of how inaccurate t is.

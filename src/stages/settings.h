@@ -104,6 +104,10 @@ struct RenderSettings {
     SamplerKind sampler = SamplerKind::independent;
     DirectStrategy direct = DirectStrategy::light;  ///< --direct, -H
     MisHeuristic mis_heuristic = MisHeuristic::power;  ///< --mis-heuristic (every MIS weight: --direct mis, path)
+    /// --transmittance delta: shadow rays through density grids estimate
+    /// their transmittance by delta tracking (0 or a survivor's weight)
+    /// instead of ratio tracking (stages/medium_tracking.h); for bench.
+    bool delta_tracking_shadows = false;
     IntegratorKind integrator = IntegratorKind::automatic;  ///< --integrator
     bool russian_roulette = true;     ///< --rr-depth off turns it off
     int rr_depth = 3;                 ///< --rr-depth N: paths of up to N bounces never meet roulette

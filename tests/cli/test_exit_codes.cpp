@@ -54,6 +54,7 @@ TEST_CASE("bad flags exit 2 with one line naming the flag") {
         {"-o 2 " + kScene, "-o: expected a whole number in [0, 1]"},
         {"-a 32 " + kScene, "-a (max tolerance): expected a number > 0"},
         {"--accel kd " + kScene, "--accel: expected one of none, grid, kdtree, bvh, embree, got 'kd'"},
+        {"--transmittance dual " + kScene, "--transmittance: expected one of ratio, delta, got 'dual'"},
         {"--student camra " + kScene, "--student: unknown stage 'camra'"},
         {"--frobnicate " + kScene, "--frobnicate: unknown option"},
         {"-s", "-s: expected 1 value after it"},

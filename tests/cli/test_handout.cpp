@@ -3,8 +3,10 @@
 // standard one differs from it only in comments and marked README
 // paragraphs: every line of code, every TODO(part line and every contract
 // pointer is kept, and no step list is left. And `partN --deliverables`
-// refuses bad input with exit 2 (rendering them is exercised by hand: it
-// runs the part's renders, too slow for a test).
+// refuses bad input with exit 2; with the handout's stubs it writes a page
+// that says which images are missing and why, and removes stale images.
+// (Rendering them with a working solution, tests/grading/solution, is done
+// by hand: docs/handouts.md has the run; the renders are too slow for a test.)
 #include <doctest/doctest.h>
 
 #include <sstream>
@@ -33,7 +35,7 @@ bool is_comment(const std::string& line) { return trimmed(line).rfind("//", 0) =
 
 const char* kStubs[] = {"part1/camera.cpp", "part1/intersect.cpp", "part2/bvh.cpp",   "part3/bsdf.cpp",
                         "part3/direct.cpp", "part3/mis.cpp",      "part4/global.cpp", "part5/adaptive.cpp",
-                        "part6/sampler.cpp"};
+                        "part6/sampler.cpp", "part8/photon.cpp", "part9/media.cpp"};
 
 }  // namespace
 
@@ -73,6 +75,10 @@ TEST_CASE("guided handouts are the repository's; standard ones keep all code and
     CHECK(readme4.find("Follow the numbered steps") == std::string::npos);
     CHECK(readme4.find("Russian roulette, and why it is unbiased") != std::string::npos);
     CHECK(read_file(dir + "/guided/part4/README.md").find("<!-- guided -->") == std::string::npos);
+    // Parts 8 and 9 too: the kd-tree query's descent and HG's frame are steps.
+    CHECK(read_file(dir + "/standard/part8/README.md").find("visit the side that holds p first") == std::string::npos);
+    CHECK(read_file(dir + "/guided/part8/README.md").find("visit the side that holds p first") != std::string::npos);
+    CHECK(read_file(dir + "/standard/part9/README.md").find("Frame(-wo)") == std::string::npos);
     CHECK(file_exists(dir + "/standard/part3/grading.json"));
     CHECK(file_exists(dir + "/standard/part3/deliverables.json"));
 }
@@ -88,4 +94,22 @@ TEST_CASE("handout.sh and --deliverables refuse bad input with exit 2 and one li
     r = run("'" + bin_path("part3") + "' --deliverables '" + dir + "/d' -s 4", dir);
     CHECK(r.exit_code == 2);
     CHECK(r.err == "part3: error: --deliverables DIR takes only -t N beside it, got '-s'\n");
+}
+
+TEST_CASE("--deliverables with the handout's stubs: a page naming every image as not rendered, exit 3, no stale image") {
+    std::string dir = scratch_dir("deliverables_stubs");
+    // A stale image from an earlier run must go: it is not this code's.
+    REQUIRE(run("mkdir -p '" + dir + "/d' && echo old > '" + dir + "/d/normals.png'", dir).exit_code == 0);
+    CommandResult r = run("'" + bin_path("part1") + "' --deliverables '" + dir + "/d' -t 1", dir);
+    CHECK(r.exit_code == 3);
+    std::string page = read_file(dir + "/d/index.html");
+    std::string list = read_file(source_path("assignments/part1/deliverables.json"));
+    for (const char* name : {"normals", "cbox_spheres"}) {
+        INFO(name);
+        CHECK(list.find(std::string("\"") + name + "\"") != std::string::npos);
+        CHECK(page.find(std::string("-f ") + name + ".png") != std::string::npos);
+        CHECK_FALSE(file_exists(dir + "/d/" + name + ".png"));
+    }
+    CHECK(page.find("Not rendered") != std::string::npos);
+    CHECK(page.find("<img") == std::string::npos);
 }

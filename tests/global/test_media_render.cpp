@@ -134,8 +134,18 @@ TEST_CASE("tracking: delta and ratio tracking agree with the closed form on a co
         CHECK(std::fabs(ratio[c] - delta[c]) <= 4.0 * std::hypot(se_ratio[c], se_delta[c]));
     }
     CHECK(se_ratio[0] < se_delta[0]);  // ratio tracking's point: less variance (red: T about 0.3)
-    {
-    }
+    // --transmittance delta sends shadow rays to delta tracking: through the
+    // cloud some return exactly 0, which ratio tracking never does there.
+    auto zeros = [&](bool delta) {
+        settings.delta_tracking_shadows = delta;
+        Rng rng(10);
+        int count = 0;
+        for (int i = 0; i < 2000; ++i)
+            count += shadow_transmittance(context, Ray(through.o, through.d, 0.0, 3.2), 1, rng).is_black();
+        return count;
+    };
+    CHECK(zeros(false) == 0);
+    CHECK(zeros(true) > 100);
 }
 
 TEST_CASE("single scattering from a point light in a slab matches quadrature of its integral") {

@@ -57,6 +57,8 @@ const std::vector<Technique>& all_techniques() {
              adaptive_cs184(c);
              c.stages.adaptive.has_converged = textbook_has_converged;
          }},
+        {"tracking-delta", "shadow rays through density grids by delta tracking (--transmittance delta)", "light",
+         [](TechniqueConfig& c) { c.settings.delta_tracking_shadows = true; }},
         {"rr-off", "no Russian roulette (--rr-depth off): paths end only at -m or a miss", "light",
          [](TechniqueConfig& c) { c.settings.russian_roulette = false; }, true},
         {"linear-scan", "no BVH: every ray tests every primitive (--accel none)", "light",

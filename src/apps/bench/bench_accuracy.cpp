@@ -47,8 +47,9 @@ const char* const kHelp = R"(bench accuracy: what accuracy costs in time, for on
                       sampler-independent ... sampler-zsobol (or samplers
                       for all five), path, pm, sppm (photon mapping: give
                       -m 100000 to compare with the uncapped path tracer),
-                      and for the path tracer (-m 2 or more) rr-off,
-                      depth-1 ... depth-8 [all]
+                      tracking-delta (media: shadow rays by delta, not
+                      ratio, tracking), and for the path tracer (-m 2 or
+                      more) rr-off, depth-1 ... depth-8 [all]
   -r W H              resolution        [the scene's film, longer side 256]
   -t N                threads                    [all hardware threads]
   -l N, -m N          samples per area light, maximum depth   [1, 1]

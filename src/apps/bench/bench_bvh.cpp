@@ -502,7 +502,7 @@ const BenchCommandRegistration kRegistration({"bvh", kUsage,
                                               "BVH4, BVH2, kd-tree, grid and Embree (when built with it)",
                                               run_bvh});
 // `bench accel` (issue 17's name for the comparison of every structure) is the same command.
-const BenchCommandRegistration kAccelAlias({"accel", kUsage, "the same as bench bvh", run_bvh});
+const BenchCommandRegistration kAccelAlias({"accel", "accel [the options of bench bvh]", "the same as bench bvh", run_bvh});
 
 }  // namespace
 }  // namespace pt::bench

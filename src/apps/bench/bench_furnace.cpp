@@ -23,6 +23,11 @@ const char* kUsage = "furnace [--samples N]";
 
 int run_furnace(const std::vector<std::string>& args) {
     int samples = 1000000;
+    for (const std::string& a : args)
+        if (a == "-h" || a == "--help") {
+            std::printf("usage: bench %s\n", kUsage);
+            return 0;
+        }
     for (size_t i = 0; i < args.size(); ++i) {
         if (args[i] == "--samples" && i + 1 < args.size()) samples = int(parse_whole_number("--samples", args[++i], 1000, 1 << 30));
         else throw InputError("bench furnace: unexpected argument '" + args[i] + "' (usage: bench " + kUsage + ")");

@@ -1,6 +1,7 @@
 // bench kdtree: the photon maps' kd-tree (stages/kdtree.h) against a
 // brute-force scan. For N uniform random points in the unit cube: the
-// build time, 50-nearest queries per second (tree and scan), fixed-radius
+// build time, 50-nearest queries per second (tree, in random and in spatial
+// order, and scan), fixed-radius
 // queries per second, and the bytes per point; one thread, CPU time of the
 // calling thread (robust when other processes share the machine).
 #include <algorithm>
@@ -30,6 +31,11 @@ double thread_seconds() {
 
 int run_kdtree(const std::vector<std::string>& args) {
     long long points = 1000000, k = 50, queries = 200000;
+    for (const std::string& a : args)
+        if (a == "-h" || a == "--help") {
+            std::printf("usage: bench %s\n", kUsage);
+            return 0;
+        }
     for (size_t i = 0; i < args.size(); ++i) {
         if (args[i] == "--points" && i + 1 < args.size()) points = parse_whole_number("--points", args[++i], 1, 1ll << 28);
         else if (args[i] == "--k" && i + 1 < args.size()) k = parse_whole_number("--k", args[++i], 1, 1 << 16);
@@ -54,6 +60,17 @@ int run_kdtree(const std::vector<std::string>& args) {
         checksum += found.back().dist2;
     }
     const double knn = (thread_seconds() - t0) / double(queries);
+
+    // The same queries in spatial order (the in-order sequence of a kd-tree
+    // over them), as a renderer issues them: neighbouring pixels gather
+    // around neighbouring points, so the tree's nodes stay in cache.
+    const std::vector<Vec3> coherent = reference::build_kdtree(at).points;
+    t0 = thread_seconds();
+    for (const Vec3& p : coherent) {
+        reference::k_nearest(tree, p, int(k), 1e300, found);
+        checksum += found.back().dist2;
+    }
+    const double knn_coherent = (thread_seconds() - t0) / double(queries);
 
     // The radius that holds k points on average: (4/3) pi r^3 N = k.
     const double r = std::cbrt(3.0 * double(k) / (4.0 * 3.14159265358979 * double(points)));
@@ -81,6 +98,8 @@ int run_kdtree(const std::vector<std::string>& args) {
     std::printf("| what | measured |\n|---|---|\n");
     std::printf("| build | %.3f s (%.0f ns per point) |\n", build, 1e9 * build / double(points));
     std::printf("| %lld-nearest query, kd-tree | %.2f us, %.0f queries/s |\n", k, 1e6 * knn, 1.0 / knn);
+    std::printf("| %lld-nearest query, kd-tree, queries in spatial order | %.2f us, %.0f queries/s |\n", k,
+                1e6 * knn_coherent, 1.0 / knn_coherent);
     std::printf("| %lld-nearest query, brute-force scan (%lld queries) | %.0f us, %.0f queries/s (kd-tree %.0f times as fast) |\n",
                 k, brute_queries, 1e6 * brute, 1.0 / brute, brute / knn);
     std::printf("| fixed-radius query, r = %.4f (mean %.1f points found) | %.2f us, %.0f queries/s |\n", r,

@@ -6,6 +6,7 @@
 // calls the reference of the function it is graded on fails that task.
 #include <stdexcept>
 
+#include "stages/mis.h"
 #include "stages/stages.h"
 
 namespace pt::reference {
@@ -103,3 +104,17 @@ Color est_radiance_global_illumination(const RenderContext&, const Ray&, Rng&) {
 #endif
 
 }  // namespace pt::reference
+
+// Engine helpers that compute a graded answer whole (scripts/weaken_reference.sh):
+// task 3.5's light-sampling estimator, and the BSDF half of task 3.8's weights.
+#if defined(PT_WITHHOLD_IMPORTANCE) || defined(PT_WITHHOLD_ESTIMATE_MIS)
+namespace pt {
+Color sample_lights_mis(const RenderContext&, const SurfaceInteraction&, const BSDF&, const Vec3&, int, Rng&) {
+    throw std::runtime_error("the engine's sample_lights_mis is not available to the code it grades");
+}
+double bsdf_sample_mis_weight(const RenderContext&, const LightSampleContext&, const Vec3&,
+                              const std::optional<SurfaceInteraction>&, double, int) {
+    throw std::runtime_error("the engine's bsdf_sample_mis_weight is not available to the code it grades");
+}
+}  // namespace pt
+#endif

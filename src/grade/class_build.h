@@ -1,0 +1,46 @@
+// Building one submission's runners for `grade --class` (docs/grading.md,
+// "Grading a class"). Each worker owns a folder configured once from the
+// small project cmake/grade_class with the main build's initial cache
+// (BUILD/grade_class/initial_cache.cmake): the compiler, its flags and the
+// trusted objects of the runners. Per submission the folder is configured
+// again with that submission's sources and built: only the student's files
+// are compiled (a handout stub's object stays up to date from one student
+// to the next), and only the runners of the submitted parts are linked.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "grade/submission.h"
+
+namespace pt {
+
+struct ClassBuildTools {
+    std::string cmake;          ///< the cmake executable the main build was made with
+    std::string generator;      ///< and its generator
+    std::string project_dir;    ///< cmake/grade_class
+    std::string initial_cache;  ///< BUILD/grade_class/initial_cache.cmake
+    std::string handout_dir;    ///< the project's assignments/: the stubs
+    int jobs = 1;               ///< compiler processes per build
+    double timeout = 600;       ///< seconds per configure and per build
+};
+
+struct ClassBuildResult {
+    bool ok = false;
+    std::string first_error;  ///< the compiler's (or linker's) first error, paths made relative
+    std::string runner_dir;   ///< where grade_runner_KEY are, when ok
+    double seconds = 0;
+};
+
+/// Builds the runners `keys` of `s` in `work_dir`; the configure and build
+/// output goes to `log_path`. Never throws for the student's code.
+ClassBuildResult build_submission(const ClassBuildTools& tools, const std::string& work_dir,
+                                  const Submission& s, const std::vector<std::string>& keys,
+                                  const std::string& log_path);
+
+/// The first error line of a build log (compiler "error:", linker
+/// "undefined reference" or "multiple definition"), with `strip` prefixes
+/// removed from paths; "" when there is none.
+std::string first_build_error(const std::string& log, const std::vector<std::string>& strip);
+
+}  // namespace pt

@@ -1,0 +1,155 @@
+// grade --class, --shard and --merge (docs/grading.md, "Grading a class"):
+// a class of four generated submissions, graded on three function tasks
+// of two parts (cheap: three runners per submission, no renders):
+//   alice  the TODO-steps solution (tests/grading/solution)     25 25 20 = 70
+//   bob    the same, with t_min ignored in intersect_triangle   25  0 20 = 45
+//   carol  the handout with a syntax error in part1/camera.cpp   0  0  0 (does not compile)
+//   dave   the solution's part1/ only                           25 25  0 (part 2 not submitted)
+// Graded once whole and once as two shards merged: the two gradebooks must
+// be the same bytes. The workers' build folder is shared by the three runs,
+// so only the first compiles.
+#include <doctest/doctest.h>
+
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kRoot = std::string(PT_TEST_OUTPUT_DIR) + "/grade_class";
+const std::string kTasks = "part1.1,part1.3,part2.2";
+
+std::string slurp(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+void replace_in_file(const std::string& path, const std::string& from, const std::string& to) {
+    std::string text = slurp(path);
+    const size_t at = text.find(from);
+    REQUIRE_MESSAGE(at != std::string::npos, path << " no longer holds: " << from);
+    text.replace(at, from.size(), to);
+    std::ofstream(path, std::ios::binary) << text;
+}
+
+/// Runs `grade ARGS`; returns the exit code, stdout+stderr in *output.
+int grade(const std::string& args, std::string* output = nullptr) {
+    const std::string log = kRoot + "/last_command.txt";
+    int status = std::system((std::string(PT_BIN_DIR) + "/grade " + args + " > " + log + " 2>&1").c_str());
+    if (output) *output = slurp(log);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+void make_class(const std::string& dir) {
+    const std::string src = PT_SOURCE_DIR;
+    const std::string solution = src + "/tests/grading/solution";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    fs::copy(solution, dir + "/alice", fs::copy_options::recursive);
+    fs::copy(solution, dir + "/bob", fs::copy_options::recursive);
+    replace_in_file(dir + "/bob/part1/intersect.cpp",
+                    "if (t < ray.t_min || t > ray.t_max) return std::nullopt;",
+                    "if (t > ray.t_max) return std::nullopt;  // t_min forgotten");
+    fs::create_directories(dir + "/carol/part1");
+    fs::create_directories(dir + "/carol/part2");
+    for (const char* f : {"part1/camera.cpp", "part1/intersect.cpp", "part2/bvh.cpp"})
+        fs::copy(src + "/assignments/" + f, dir + "/carol/" + f);
+    std::ofstream(dir + "/carol/part1/camera.cpp", std::ios::app) << "\nint broken(\n";
+    fs::create_directories(dir + "/dave");
+    fs::copy(solution + "/part1", dir + "/dave/part1", fs::copy_options::recursive);
+}
+
+std::vector<std::string> lines(const std::string& text) {
+    std::vector<std::string> out;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);)
+        out.push_back(line);
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("grade --class: gradebook, reports, Gradescope results; two shards merged give the same gradebook") {
+    fs::create_directories(kRoot);
+    const std::string subs = kRoot + "/submissions", work = kRoot + "/work";
+    make_class(subs);
+    for (const char* d : {"/whole", "/shard1", "/shard2", "/merged"})
+        fs::remove_all(kRoot + d);
+    const std::string common = " --task " + kTasks + " --build-dir " + work + " -j 2 -q";
+
+    std::string output;
+    REQUIRE_MESSAGE(grade("--class " + subs + " --out " + kRoot + "/whole" + common, &output) == 0, output);
+    const std::string whole = slurp(kRoot + "/whole/gradebook.csv");
+    const std::vector<std::string> rows = lines(whole);
+    REQUIRE(rows.size() == 5);
+    CHECK(rows[0] == "student,part1.1,part1.3,part2.2,total,max,outcome,note");
+    CHECK(rows[1] == "alice,25,25,20,70,70,graded,");
+    CHECK(rows[2] == "bob,25,0,20,45,70,graded,");
+    CHECK(rows[3].rfind("carol,0,0,0,0,70,does not compile,", 0) == 0);
+    CHECK(rows[3].find("part1/camera.cpp:") != std::string::npos);  // the compiler's first error,
+    CHECK(rows[3].find("error:") != std::string::npos);              // its path relative to the submission
+    CHECK(rows[4] == "dave,25,25,0,50,70,graded,not submitted: part2");
+
+    // Per student: the three reports, results.json in Gradescope's format.
+    for (const char* name : {"alice", "bob", "carol", "dave"})
+        for (const char* f : {"report.md", "report.json", "report.html", "results.json", "class.json"})
+            CHECK_MESSAGE(fs::exists(kRoot + "/whole/" + name + "/" + f), name << "/" << f);
+    nlohmann::json gs = nlohmann::json::parse(slurp(kRoot + "/whole/bob/results.json"));
+    CHECK(gs["score"].get<double>() == 45);
+    REQUIRE(gs["tests"].size() == 3);
+    CHECK(gs["tests"][1]["number"] == "part1.3");
+    CHECK(gs["tests"][1]["score"].get<double>() == 0);
+    CHECK(gs["tests"][1]["max_score"].get<double>() == 25);
+    CHECK(gs["tests"][1]["visibility"] == "visible");
+    CHECK(gs["tests"][1]["output"].get<std::string>().rfind("fail: ", 0) == 0);
+    nlohmann::json dave = nlohmann::json::parse(slurp(kRoot + "/whole/dave/report.json"));
+    CHECK(dave["tasks"][2]["status"] == "not submitted");
+    const std::string summary = slurp(kRoot + "/whole/summary.md");
+    CHECK(summary.find("- students: 4 (3 graded, 1 do not compile") != std::string::npos);
+    CHECK(summary.find("| part1.3 | Ray-triangle intersection (intersect_triangle) | 25 | 2 (50%) | 1 |") !=
+          std::string::npos);
+    CHECK(fs::exists(kRoot + "/whole/summary.html"));
+
+    // Two shards (alice, carol | bob, dave), then merged.
+    REQUIRE_MESSAGE(grade("--class " + subs + " --out " + kRoot + "/shard1 --shard 1/2" + common, &output) == 0,
+                    output);
+    REQUIRE_MESSAGE(grade("--class " + subs + " --out " + kRoot + "/shard2 --shard 2/2" + common, &output) == 0,
+                    output);
+    CHECK(lines(slurp(kRoot + "/shard1/gradebook.csv")).size() == 3);
+    REQUIRE_MESSAGE(grade("--merge " + kRoot + "/shard1 " + kRoot + "/shard2 --out " + kRoot + "/merged -q",
+                          &output) == 0,
+                    output);
+    CHECK(slurp(kRoot + "/merged/gradebook.csv") == whole);
+    CHECK(slurp(kRoot + "/merged/summary.md") == summary);
+    CHECK(fs::exists(kRoot + "/merged/dave/report.html"));
+
+    // A student in two shards is refused.
+    CHECK(grade("--merge " + kRoot + "/shard1 " + kRoot + "/whole --out " + kRoot + "/twice -q", &output) == 2);
+    CHECK(output.find("alice") != std::string::npos);
+}
+
+TEST_CASE("grade --class and --merge: bad arguments are one line and exit 2") {
+    fs::create_directories(kRoot);
+    std::string output;
+    for (const std::string& args :
+         {std::string("--class ") + kRoot + "/no_such_folder --out " + kRoot + "/x",
+          std::string("--class ") + PT_SOURCE_DIR + "/assignments",  // no --out
+          std::string("--class ") + PT_SOURCE_DIR + " --out " + kRoot + "/x --shard 3/2",
+          std::string("--class ") + PT_SOURCE_DIR + " --out " + kRoot + "/x --shard two",
+          std::string("-j 2 --out ") + kRoot + "/x",
+          std::string("--merge --out ") + kRoot + "/x",
+          std::string("--merge ") + kRoot + "/no_such_folder --out " + kRoot + "/x"}) {
+        CHECK_MESSAGE(grade(args, &output) == 2, args);
+        CHECK_MESSAGE(lines(output).size() == 1, args << ": " << output);
+        CHECK_MESSAGE(output.rfind("grade: error: ", 0) == 0, args << ": " << output);
+    }
+}
