@@ -25,7 +25,6 @@ enum class Bug {
     weight_without_pdf,  ///< weight = f |cos theta_i|: the division by the pdf forgotten
     delta_light_skipped,     ///< step 6 left out: nothing seen through a mirror or glass
     delta_light_uncounted,   ///< step 6 without "counted": light after a delta bounce with -o 0 too
-    sample_unchecked,        ///< step 3 without its check: an invalid sample (pdf 0) divides
 };
 
 template <Bug bug>
@@ -44,7 +43,7 @@ Color bounce(const RenderContext& context, const Ray& ray, const SurfaceInteract
         L = context.stages.direct.one_bounce_radiance(context, ray, isect, rng);
     if (bounces == m && !(bsdf.is_delta() && counted)) return L;
     BSDFSample bs = bsdf.sample_f(wo, rng.next_2d());
-    if (bug != Bug::sample_unchecked && (!bs.valid() || bs.f.is_black())) return L;
+    if (!bs.valid() || bs.f.is_black()) return L;
     Color weight = bs.f;
     if (bug != Bug::weight_without_cos) weight *= std::fabs(bs.wi.z);
     if (bug != Bug::weight_without_pdf) weight /= bs.pdf;
