@@ -121,7 +121,7 @@ def upper95(k, n):
     return hi
 
 
-print("| task | case | seeds | failures | 95% upper bound | max error ratio | max worst-tile |z| |")
+print("| task | case | seeds | failures | 95% upper bound | max error ratio | max worst-tile \\|z\\| |")
 print("|---|---|---|---|---|---|---|")
 for (task, label), (k, n, ratio, z) in sorted(cases.items()):
     if label == "(the whole task)" and any(t == task and l != label for (t, l) in cases):
