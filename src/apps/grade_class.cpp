@@ -49,6 +49,12 @@ std::string join_parts(const std::vector<int>& parts, const std::string& prefix,
     return out;
 }
 
+/// A folder as the user typed it, without trailing slashes, for messages.
+std::string shown(std::string dir) {
+    while (dir.size() > 1 && dir.back() == '/') dir.pop_back();
+    return dir;
+}
+
 std::string duration(double s) {
     char buf[32];
     long t = long(std::lround(s));
@@ -185,7 +191,14 @@ struct ClassRun {
         } else {
             const std::string work = build_dir + "/slot" + std::to_string(slot);
             ClassBuildResult b = build_submission(tools, work, s, keys, dir + "/build.log");
-            if (!b.ok) {
+            if (!b.ok && b.internal) {
+                rec.outcome = "grading failed";
+                rec.note = "the build of the runners failed (" + b.first_error + "; see build.log)";
+                report = made_report(manifests, s, o, "not graded: " + rec.note);
+                write_reports(report, dir);
+                std::lock_guard<std::mutex> lock(mutex);
+                ++internal_failures;
+            } else if (!b.ok) {
                 rec.outcome = "does not compile";
                 rec.note = b.first_error + (missing.empty() ? "" : "; " + rec.note);
                 report = made_report(manifests, s, o, "does not compile: " + b.first_error);
@@ -317,10 +330,10 @@ int run_class(const GradeOptions& o) {
                                 std::max(1, hw / jobs), o.build_timeout};
     run.child_threads = o.threads_given ? o.threads : std::max(1, hw / jobs);
     run.grade_exe = self_exe();
-    run.progress = isatty(2) != 0;
+    run.progress = isatty(2) != 0 && !o.quiet;  // as the renderers' progress bar
     if (!o.quiet)
         std::printf("grade: %zu of %zu submissions in %s (shard %d/%d), %d at a time\n", run.todo.size(),
-                    all.size(), o.class_dir.c_str(), o.shard, o.shards, jobs);
+                    all.size(), shown(o.class_dir).c_str(), o.shard, o.shards, jobs);
     std::vector<std::thread> workers;
     for (int k = 0; k < jobs; ++k)
         workers.emplace_back([&run, k] { run.worker(k); });
@@ -339,7 +352,8 @@ int run_class(const GradeOptions& o) {
     if (!o.quiet)
         std::printf("grade: %zu submissions graded in %.1f s; gradebook %s/gradebook.csv, summary "
                     "%s/summary.html\n",
-                    run.todo.size(), run.timer.seconds(), o.out_dir.c_str(), o.out_dir.c_str());
+                    run.todo.size(), run.timer.seconds(), shown(o.out_dir).c_str(),
+                    shown(o.out_dir).c_str());
     if (run.internal_failures)
         std::fprintf(stderr, "grade: %d submissions could not be graded (see the gradebook's note column)\n",
                      run.internal_failures);
@@ -380,7 +394,7 @@ int run_merge(const GradeOptions& o) {
     write_class_outputs(records, out.string());
     if (!o.quiet)
         std::printf("grade: %zu students from %zu folders; gradebook %s/gradebook.csv, summary %s/summary.html\n",
-                    records.size(), o.merge_dirs.size(), o.out_dir.c_str(), o.out_dir.c_str());
+                    records.size(), o.merge_dirs.size(), shown(o.out_dir).c_str(), shown(o.out_dir).c_str());
     return kExitOk;
 }
 

@@ -73,12 +73,15 @@ std::vector<FlagSpec> flag_table() {
         {{"--exposure"}, 1, [](Options& o, S f, V v) { o.display.exposure = parse_real_number(f, v[0], -64, 64); }},
         {{"--accel"}, 1, [](Options& o, S f, V v) { o.accelerator.kind = parse_accel_kind(v[0], f); }},
         {{"--integrator"}, 1, [](Options& o, S f, V v) {
-             std::string k = one_of(f, v[0], {"auto", "normals", "depth", "whitted", "direct", "path", "pm", "sppm", "volpath"});
+             std::string k = one_of(f, v[0], {"auto", "normals", "depth", "whitted", "direct", "path", "pm", "sppm", "volpath", "bdpt"});
              for (IntegratorKind kind : {IntegratorKind::automatic, IntegratorKind::normals, IntegratorKind::depth,
                                          IntegratorKind::whitted, IntegratorKind::direct, IntegratorKind::path,
-                                         IntegratorKind::pm, IntegratorKind::sppm, IntegratorKind::volpath})
+                                         IntegratorKind::pm, IntegratorKind::sppm, IntegratorKind::volpath,
+                                         IntegratorKind::bdpt})
                  if (k == to_string(kind)) o.render.integrator = kind;
          }},
+        {{"--bdpt-strategies"}, 1, [](Options& o, S, V v) { o.bdpt_strategies = v[0]; }},
+        {{"--bdpt-strategy-depth"}, 1, [](Options& o, S f, V v) { o.bdpt_strategy_depth = int(parse_whole_number(f, v[0], 0, 8)); }},
         {{"--student"}, 1, [](Options& o, S f, V v) { o.student = StageSet::parse(v[0], f); }},
         {{"--stats"}, 1, [](Options& o, S, V v) { o.stats_output = v[0]; }},
         {{"-q"}, 0, [](Options& o, S, V) { o.quiet = true; }},
@@ -234,7 +237,10 @@ std::string usage(const std::string& program, StageSet default_student) {
       << "  --exposure EV   scale the PNG's radiance by 2^EV before tone mapping   [0]\n"
       << "  --accel none|grid|kdtree|bvh|embree  acceleration structure (embree: only in\n"
       << "                  builds with -DPT_WITH_EMBREE=ON)                       [bvh]\n"
-      << "  --integrator auto|normals|depth|whitted|direct|path|pm|sppm|volpath    [auto]\n"
+      << "  --integrator auto|normals|depth|whitted|direct|path|pm|sppm|volpath|bdpt    [auto]\n"
+      << "  --bdpt-strategies DIR  bdpt: one image per strategy (s, t), weighted and unweighted,\n"
+      << "                  and DIR/strategies.png, up to --bdpt-strategy-depth bounces   [off]\n"
+      << "  --bdpt-strategy-depth N  bounces of the strategy images                     [min(-m, 3)]\n"
       << "  --photons N     pm: photons emitted for the global map                 [200000]\n"
       << "  --caustic-photons N  pm: photons emitted for the caustic map           [200000]\n"
       << "  --radius R      pm: fixed search radius (largest one with --knn); sppm: initial radius\n"

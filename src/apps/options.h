@@ -27,6 +27,8 @@ struct Options {
     int threads = 1;                   ///< -t (default: all hardware threads)
     std::string output;                ///< -f FILE.png|FILE.exr; empty = "<scene name>.png"
     std::string hdr_output;            ///< --hdr FILE.pfm|FILE.exr
+    std::string bdpt_strategies;       ///< --bdpt-strategies DIR (bdpt); empty: none
+    int bdpt_strategy_depth = -1;      ///< --bdpt-strategy-depth N; -1: min(-m, 3)
     DisplaySettings display;           ///< --tonemap, --exposure (the PNG only)
     std::string stats_output;          ///< --stats FILE.json
     std::string environment_map;       ///< -e FILE

@@ -1,5 +1,6 @@
 #include "apps/render_app.h"
 
+#include <filesystem>
 #include <cstdio>
 #include <iostream>
 
@@ -15,6 +16,7 @@
 #include "image/image_io.h"
 #include "image/tone_map.h"
 #include "render/bvh_view.h"
+#include "render/bdpt_strategies.h"
 #include "render/integrators.h"
 #include "stages/render_context.h"
 #include "render/renderer.h"
@@ -192,6 +194,18 @@ int run(const std::vector<std::string>& args, const std::string& program, StageS
     std::string reason;
     IntegratorKind kind = choose_integrator(scene, effects, options.render, &reason, options.student);
     std::unique_ptr<Integrator> integrator = make_integrator(kind);
+    if (!options.bdpt_strategies.empty()) {
+        // --bdpt-strategies: BDPT's per-strategy images (render/bdpt_strategies.h).
+        if (kind != IntegratorKind::bdpt)
+            throw InputError("--bdpt-strategies: needs --integrator bdpt (the integrator is " +
+                             std::string(to_string(kind)) + ")");
+        std::error_code ec;
+        std::filesystem::create_directories(options.bdpt_strategies, ec);
+        if (ec || !std::filesystem::is_directory(options.bdpt_strategies))
+            throw InputError("--bdpt-strategies: cannot create the folder '" + options.bdpt_strategies + "'");
+        options.render.bdpt_strategy_depth =
+            options.bdpt_strategy_depth >= 0 ? options.bdpt_strategy_depth : std::min(options.render.max_depth, 3);
+    }
     CodePaths code_paths = plan_code_paths(scene, effects, options.render);
     if (options.student.contains(Stage::adaptive) && !options.render.adaptive)
         std::cout << program << ": note: adaptive sampling is off; add -a N TOL to run your has_converged\n";
@@ -244,6 +258,10 @@ int run(const std::vector<std::string>& args, const std::string& program, StageS
         written += ", " + rate_path;
     }
     if (!options.hdr_output.empty()) written += ", " + options.hdr_output;
+    if (!options.bdpt_strategies.empty()) {
+        write_strategy_images(result.layers, options.render.bdpt_strategy_depth, options.bdpt_strategies);
+        written += ", " + options.bdpt_strategies + "/";
+    }
     AcceleratorInfo accel_info = accelerator->info();
     if (!options.stats_output.empty())
         write_stats(options.stats_output, program, options, scene, effects, code_paths, kind, accel_info, result,

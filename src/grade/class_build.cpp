@@ -84,10 +84,17 @@ ClassBuildResult build_submission(const ClassBuildTools& tools, const std::strin
     if (!fs::exists(fs::path(work_dir) / "CMakeCache.txt", ec))
         configure.insert(configure.begin() + 1, {"-G", tools.generator});
     ChildOutcome c = run_child(configure, log_path, tools.timeout);
-    const std::vector<std::string> strip = {s.dir + "/", tools.handout_dir + "/", work_dir + "/"};
+    // The compiler names a file as the generator spelled it: absolute, or
+    // relative to the build folder when the submissions lie below it.
+    std::vector<std::string> strip = {s.dir + "/", tools.handout_dir + "/", work_dir + "/"};
+    for (const std::string& d : {s.dir, tools.handout_dir}) {
+        const std::string rel = fs::path(d).lexically_relative(fs::absolute(work_dir)).string();
+        if (!rel.empty() && rel != ".") strip.insert(strip.begin(), rel + "/");
+    }
     if (c.exit_code != 0) {
         std::string e = first_build_error(read_text(log_path, 1 << 20), strip);
         r.first_error = e.empty() ? why(c, "the configure step", tools.timeout) : e;
+        r.internal = e.empty() || e.rfind("CMake Error", 0) == 0;
         r.seconds = timer.seconds();
         return r;
     }
@@ -97,6 +104,7 @@ ClassBuildResult build_submission(const ClassBuildTools& tools, const std::strin
     if (b.exit_code != 0) {
         std::string e = first_build_error(read_text(log_path, 8 << 20), strip);
         r.first_error = e.empty() ? why(b, "the build", tools.timeout) : e;
+        r.internal = e.empty() && !b.timed_out;  // a compile that never ends is the student's
         r.seconds = timer.seconds();
         return r;
     }

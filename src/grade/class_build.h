@@ -27,6 +27,9 @@ struct ClassBuildTools {
 
 struct ClassBuildResult {
     bool ok = false;
+    /// The build failed without a compiler or linker error to show (a
+    /// timeout, a missing trusted object): the grader's problem, not the student's.
+    bool internal = false;
     std::string first_error;  ///< the compiler's (or linker's) first error, paths made relative
     std::string runner_dir;   ///< where grade_runner_KEY are, when ok
     double seconds = 0;

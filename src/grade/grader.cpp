@@ -83,7 +83,9 @@ GradeReport grade_all(const std::vector<PartManifest>& manifests, const GradeEnv
         iso.timeout = isolate_timeout;
         return grade_all(manifests, env, on_task, iso);
     }
-    return grade_all(manifests, env, on_task, Isolation{0});
+    Isolation in_process;  // timeout 0: no limit
+    in_process.timeout = 0;
+    return grade_all(manifests, env, on_task, in_process);
 }
 
 GradeReport grade_all(const std::vector<PartManifest>& manifests, const GradeEnvironment& env,

@@ -33,6 +33,9 @@ std::unique_ptr<Integrator> make_pm_integrator();
 /// Stochastic progressive photon mapping: render_image hands the whole
 /// render to render_sppm (render/sppm.h); Li alone is not defined.
 std::unique_ptr<Integrator> make_sppm_integrator();
+/// Bidirectional path tracing (render/bdpt_integrator.cpp, stages/bdpt.h):
+/// every strategy (s, t) weighted by MIS; light tracing splats (Integrator::splat_layers).
+std::unique_ptr<Integrator> make_bdpt_integrator();
 
 }  // namespace pt
 

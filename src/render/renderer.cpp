@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <atomic>
 #include <exception>
+#include <memory>
 #include <mutex>
 #include <thread>
 
 #include "core/progress.h"
 #include "core/timer.h"
+#include "render/splat_film.h"
 #include "render/sppm.h"
 #include "stages/integrator.h"
 #include "stages/render_context.h"
@@ -32,6 +34,10 @@ RenderResult render_image(const RenderContext& context, const RenderOptions& opt
     result.sample_counts.assign(size_t(width) * height, 0);
     Progress progress("render", uint64_t(area.width) * area.height, options.show_progress);
 
+    // Splats (BDPT's light tracing): a film per thread, summed exactly.
+    const int splat_layers = context.integrator.splat_layers(context);
+    SplatFilm splats(splat_layers > 0 ? width : 0, splat_layers > 0 ? height : 0, splat_layers);
+
     std::atomic<int> next_tile{0};
     std::atomic<bool> abort{false};
     std::atomic<bool> out_of_time{false};
@@ -42,6 +48,9 @@ RenderResult render_image(const RenderContext& context, const RenderOptions& opt
     auto worker = [&] {
         RayCounters& counters = thread_counters();
         RayCounters before = counters;
+        std::unique_ptr<SplatFilm> film;
+        if (splat_layers > 0) film = std::make_unique<SplatFilm>(width, height, splat_layers);
+        set_current_splat_film(film.get());
         try {
             for (int tile = next_tile++; tile < tile_count && !abort; tile = next_tile++) {
                 int x0 = area.x + (tile % tiles_x) * kTile, y0 = area.y + (tile / tiles_x) * kTile;
@@ -72,9 +81,11 @@ RenderResult render_image(const RenderContext& context, const RenderOptions& opt
             if (!failure) failure = std::current_exception();
             abort = true;
         }
+        set_current_splat_film(nullptr);
         // Add only this render's share of the thread's counters.
         std::lock_guard<std::mutex> lock(merge_mutex);
         result.counters += counters - before;
+        if (film) splats.merge(*film);
     };
 
     int threads = std::max(1, std::min(options.threads, tile_count));
@@ -85,6 +96,24 @@ RenderResult render_image(const RenderContext& context, const RenderOptions& opt
     result.seconds = timer.seconds() + prepare_seconds;
     if (failure) std::rethrow_exception(failure);
     result.complete = !out_of_time;
+    for (int layer = 0; layer < splat_layers; ++layer) {
+        Image image(width, height);
+        for (int y = area.y; y < area.y + area.height; ++y)
+            for (int x = area.x; x < area.x + area.width; ++x) image.set(x, y, splats.value(layer, x, y));
+        if (layer == 0) {
+            for (int y = area.y; y < area.y + area.height; ++y)
+                for (int x = area.x; x < area.x + area.width; ++x) {
+                    Color c = result.image.at(x, y) + image.at(x, y);
+                    if (!c.is_finite()) {
+                        ++result.counters.nonfinite_samples;
+                        c = Color(0);
+                    }
+                    result.image.set(x, y, c);
+                }
+        } else {
+            result.layers.push_back(std::move(image));
+        }
+    }
     progress.finish();
     return result;
 }

@@ -33,6 +33,9 @@ struct RenderResult {
     RayCounters counters;                ///< summed over all threads
     double seconds = 0;                  ///< wall-clock time of the render
     bool complete = true;                ///< false: stopped by options.time_limit, some pixels black
+    /// The integrator's extra splat images (Integrator::splat_layers beyond
+    /// layer 0, which is in `image`), normalised; empty for most integrators.
+    std::vector<Image> layers;
 };
 
 /// Renders every pixel of the film (or of options.cell). A stage that throws

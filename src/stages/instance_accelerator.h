@@ -15,6 +15,10 @@
 // InstanceRecord (transform and box, ~180 bytes) per instance, whatever the
 // shape's size (README "Instancing", docs/scenes.md "shapes").
 //
+// A CSG shape (scene/csg.h) gets stages/csg_accelerator.h below the top
+// level instead of a BVH; group shapes never get here (the loader flattens
+// them into instances), and emitting instances are copied into the world.
+//
 // Tests: tests/unit/test_instances.cpp (instances against the same
 // geometry placed in the world: hits, normals under non-uniform scale,
 // shadow rays; the loader's errors).

@@ -29,6 +29,13 @@ public:
         (void)context;
         (void)threads;
     }
+    /// Images of splats the integrator adds to pixels other than the camera
+    /// ray's (render/splat_film.h): 0 for none; layer 0 is added to the
+    /// image, further layers come back in RenderResult::layers.
+    virtual int splat_layers(const RenderContext& context) const {
+        (void)context;
+        return 0;
+    }
 };
 
 }  // namespace pt

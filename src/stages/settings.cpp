@@ -36,6 +36,7 @@ const char* to_string(IntegratorKind k) {
         case IntegratorKind::direct: return "direct";
         case IntegratorKind::path: return "path";
         case IntegratorKind::volpath: return "volpath";
+        case IntegratorKind::bdpt: return "bdpt";
         case IntegratorKind::pm: return "pm";
         case IntegratorKind::sppm: return "sppm";
     }

@@ -34,6 +34,7 @@ enum class IntegratorKind {
     pm,         ///< photon mapping, Jensen's two passes with final gathering (render/pm_integrator.cpp)
     sppm,       ///< stochastic progressive photon mapping (render/sppm.h)
     volpath,    ///< path tracing through participating media (Part 9)
+    bdpt,       ///< bidirectional path tracing (Part 7, stages/bdpt.h)
 };
 
 /// The kernel of a photon density estimate (stages/photon.h), `--photon-kernel`.
@@ -114,6 +115,9 @@ struct RenderSettings {
     double clamp = 0;                 ///< --clamp X: each sample's max component <= X (biased); 0 = off
     int whitted_max_specular = 8;     ///< specular bounces the Whitted integrator follows
     PhotonSettings photon;            ///< --photons ... (pm, sppm)
+    /// --bdpt-strategies: BDPT's per-strategy images up to this many bounces
+    /// (render/bdpt_strategies.h); -1: none.
+    int bdpt_strategy_depth = -1;
     CodePaths force;                  ///< debug: code paths run even when the analysis skips them
 };
 

@@ -17,6 +17,7 @@ const char* to_string(Stage stage) {
         case Stage::sampler: return "sampler";
         case Stage::photon: return "photon";
         case Stage::media: return "media";
+        case Stage::bdpt: return "bdpt";
     }
     return "?";
 }
@@ -32,6 +33,7 @@ int part_of(Stage stage) {
         case Stage::sampler: return 6;
         case Stage::photon: return 8;
         case Stage::media: return 9;
+        case Stage::bdpt: return 7;
     }
     return 0;
 }
@@ -60,7 +62,7 @@ StageSet StageSet::parse(const std::string& list, const std::string& flag) {
         if (!found)
             throw InputError(flag + ": unknown stage '" + name +
                              "' (expected a comma-separated list of camera, intersect, bvh, direct, "
-                             "global, adaptive, sampler, photon, media, or 'all' or 'none')");
+                             "global, adaptive, sampler, photon, media, bdpt, or 'all' or 'none')");
     }
     if (set.empty()) throw InputError(flag + ": empty stage list (use 'none' for no student stages)");
     return set;

@@ -9,11 +9,11 @@
 
 namespace pt {
 
-enum class Stage : uint8_t { camera, intersect, bvh, direct, global, adaptive, sampler, photon, media };
-constexpr int kStageCount = 9;
+enum class Stage : uint8_t { camera, intersect, bvh, direct, global, adaptive, sampler, photon, media, bdpt };
+constexpr int kStageCount = 10;
 
 const char* to_string(Stage stage);
-/// The course part (1 to 6, 8, 9) a stage belongs to.
+/// The course part (1 to 9) a stage belongs to.
 int part_of(Stage stage);
 
 class StageSet {
@@ -21,7 +21,7 @@ public:
     StageSet() = default;
     static StageSet none() { return {}; }
     static StageSet all() { return StageSet(uint16_t((1u << kStageCount) - 1)); }
-    /// The stages of course part `part` (1 to 6, 8, 9; none for a part without a stage).
+    /// The stages of course part `part` (1 to 9; none for a part without a stage).
     static StageSet of_part(int part);
     /// Parses "camera,intersect", "all" or "none"; throws InputError naming `flag`.
     static StageSet parse(const std::string& list, const std::string& flag = "--student");

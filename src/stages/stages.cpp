@@ -86,6 +86,10 @@ Stages make_stages(StageSet student, TriangleTest triangle_test) {
         s.media = {reference::homogeneous_transmittance, reference::sample_distance, reference::hg_phase,
                    reference::sample_hg, reference::in_scattered_radiance};
     }
+    if (student.contains(Stage::bdpt))
+        s.bdpt = {student::random_walk, student::connect, student::mis_weight};
+    else
+        s.bdpt = {reference::random_walk, reference::connect, reference::mis_weight};
     return s;
 }
 

@@ -17,6 +17,7 @@
 #include "stages/direct.h"
 #include "stages/global.h"
 #include "stages/intersect.h"
+#include "stages/bdpt.h"
 #include "stages/media.h"
 #include "stages/photon.h"
 #include "stages/sampler.h"
@@ -73,6 +74,7 @@ struct Stages {
     SamplerStage sampler;
     MediaStage media;
     PhotonStage photon;
+    BdptStage bdpt;
 
     bool is_student(Stage s) const { return student.contains(s); }
 };

@@ -35,7 +35,7 @@ bool is_comment(const std::string& line) { return trimmed(line).rfind("//", 0) =
 
 const char* kStubs[] = {"part1/camera.cpp", "part1/intersect.cpp", "part2/bvh.cpp",   "part3/bsdf.cpp",
                         "part3/direct.cpp", "part3/mis.cpp",      "part4/global.cpp", "part5/adaptive.cpp",
-                        "part6/sampler.cpp", "part8/photon.cpp", "part9/media.cpp"};
+                        "part6/sampler.cpp", "part7/bdpt.cpp", "part8/photon.cpp", "part9/media.cpp"};
 
 }  // namespace
 

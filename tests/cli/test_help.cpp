@@ -16,7 +16,7 @@ TEST_CASE("every executable, bench subcommand, tool and script answers --help wi
     const std::string tools = std::string(PT_BIN_DIR) + "/../tests/";
     std::vector<std::string> commands = {
         bin_path("pathtracer"), bin_path("part1"), bin_path("part2"), bin_path("part3"), bin_path("part4"),
-        bin_path("part5"), bin_path("part6"), bin_path("part8"), bin_path("grade"), bin_path("imgdiff"), bin_path("part9"), bin_path("make_sky"), bin_path("make_cloud"), bin_path("bench"),
+        bin_path("part5"), bin_path("part6"), bin_path("part7"), bin_path("part8"), bin_path("grade"), bin_path("imgdiff"), bin_path("part9"), bin_path("make_sky"), bin_path("make_cloud"), bin_path("bench"),
         tools + "ray_cost", tools + "direct_compare",
         source_path("scripts/demo.sh"), source_path("scripts/test.sh"), source_path("scripts/setup.sh"),
         source_path("scripts/build.sh"), source_path("scripts/sanitize.sh"), source_path("scripts/fuzz.sh"),

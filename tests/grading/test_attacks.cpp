@@ -117,6 +117,10 @@ TEST_CASE("attack: a setsid grandchild waiting to rewrite the reports is killed 
                 }
                 _exit(0);
             }
+            // Wait (up to 10 s) until the grandchild has said who it is: on a
+            // loaded machine the task could end, and the grader kill it,
+            // before it ran at all, and this test would find no pid to check.
+            for (int i = 0; i < 1000 && read_pid(g_pid_file) <= 0; ++i) usleep(10000);
         }
         return reference_stages().intersect.intersect_triangle(tri, r);
     };

@@ -74,6 +74,8 @@ const std::vector<Technique>& all_techniques() {
         {"depth-8", "-m 8: at most 8 bounces", "light", cap_depth<8>, true},
         {"path", "the path tracer (--integrator path), also where auto picks photon mapping", "light",
          [](TechniqueConfig& c) { c.settings.integrator = IntegratorKind::path; }},
+        {"bdpt", "bidirectional path tracing (--integrator bdpt): every strategy (s, t), MIS", "path",
+         [](TechniqueConfig& c) { c.settings.integrator = IntegratorKind::bdpt; }},
         {"pm", "photon mapping (--integrator pm, 200000 + 200000 photons): biased, error floor", "path",
          [](TechniqueConfig& c) { c.settings.integrator = IntegratorKind::pm; }},
         {"sppm", "progressive photon mapping (--integrator sppm), one pass of 100000 photons per spp", "path",

@@ -45,7 +45,7 @@ const char* const kHelp = R"(bench accuracy: what accuracy costs in time, for on
   --techniques LIST   all, or some of: hemisphere, light, mis, mis-balance,
                       adaptive, adaptive-cs184, adaptive-noguard, linear-scan,
                       sampler-independent ... sampler-zsobol (or samplers
-                      for all five), path, pm, sppm (photon mapping: give
+                      for all five), path, bdpt (bidirectional), pm, sppm (photon mapping: give
                       -m 100000 to compare with the uncapped path tracer),
                       tracking-delta (media: shadow rays by delta, not
                       ratio, tracking), and for the path tracer (-m 2 or

@@ -3,6 +3,7 @@
 // only in the runners. Calling one of these is a bug of the grader.
 #include <stdexcept>
 
+#include "stages/bdpt.h"
 #include "stages/media.h"
 #include "stages/photon.h"
 #include "stages/stages.h"
@@ -77,5 +78,14 @@ Vec3 sample_hg(const Vec3&, double, Vec2) { absent("sample_hg"); }
 Color in_scattered_radiance(const RenderContext&, const Vec3&, const Vec3&, int, Rng&) {
     absent("in_scattered_radiance");
 }
+int random_walk(const RenderContext&, const Ray&, const Color&, double, int, Transport, Rng&,
+                std::vector<PathVertex>&) {
+    absent("random_walk");
+}
+Connection connect(const RenderContext&, const std::vector<PathVertex>&, int, const std::vector<PathVertex>&, int,
+                   Rng&) {
+    absent("connect");
+}
+double mis_weight(const MisVertex*, int, const MisVertex*, int, bool, MisHeuristic) { absent("mis_weight"); }
 
 }  // namespace pt::student
