@@ -1,10 +1,14 @@
 #!/usr/bin/env bash
 # Coverage of the graded cases (issue 15): builds the handout-steps solution
 # (tests/grading/solution, or $PT_COVERAGE_SOLUTION) with gcov counters on the
-# student's files only, grades it in one process (--timeout 0, so that the
-# counters are written at exit), and prints per task and function the lines
+# student's files only, grades it (--timeout 0: unoptimised code is slow),
+# and prints per task and function the lines
 # and branches of the solution that no graded case ran, less the exclusions
 # listed in the manifests ("coverage_exclusions", each with its reason).
+# The student code runs in grade's runners (one process per task), which
+# write their counters before they exit (__gcov_dump); they run without
+# bubblewrap (--no-sandbox) so that they can write them into the build
+# folder: the solution is ours, not a student's.
 #
 #   scripts/coverage.sh [BUILD_DIR]        (default build-coverage)
 #
@@ -32,11 +36,11 @@ cmake --build "$build" -j2 --target grade > "$build/build.log" 2>&1 ||
   { echo "coverage: the build failed, see $build/build.log" >&2; exit 2; }
 find "$build" -name '*.gcda' -delete
 status=0
-"$build/bin/grade" --timeout 0 -q -t 2 --out "$build/coverage_grade" \
+"$build/bin/grade" --no-sandbox --timeout 0 -q -t 2 --out "$build/coverage_grade" \
   --manifests "$root/assignments" --assets "$root/assets" || status=$?
 if [ "$status" -ge 2 ]; then
   echo "coverage: grade failed (exit $status)" >&2
   exit 2
 fi
 [ "$status" -eq 0 ] || echo "coverage: note: the solution did not earn full marks (see $build/coverage_grade/report.md)"
-python3 "$root/scripts/coverage_report.py" "$build" "$student" "$root/assignments"
+python3 "$root/scripts/coverage_report.py" "$build" "$student" "$root/assignments" "$solution"

@@ -2,15 +2,22 @@
 """The report of scripts/coverage.sh: lines and branches of the student's
 files that no graded case ran, per task and function.
 
-Usage: coverage_report.py BUILD_DIR SOLUTION_DIR ASSIGNMENTS_DIR
+Usage: coverage_report.py BUILD_DIR STUDENT_DIR ASSIGNMENTS_DIR [SOLUTION_DIR]
+
+STUDENT_DIR is the folder that was built (the handout's files overlaid with
+the solution's); with SOLUTION_DIR, only the files the solution writes are
+reported (the handout's stubs of later parts are not the solution's code).
 
 Reads the gcov counters of every student object under BUILD_DIR (gcov's JSON
 format), maps functions to tasks through the manifests (a function check's
 "check" is the function it grades; an image task's "student_functions";
-Part 2's performance task all four functions), and drops the lines the
+Part 2's performance task all four functions; part3.7's check both
+heuristics), and drops the lines the
 manifests' "coverage_exclusions" list ({"function", "line", "reason"}: the
 line's text, stripped). Branches gcov marks as exception paths ("throw")
-are not counted: they are the compiler's unwinding edges, not the student's.
+are not counted: they are the compiler's unwinding edges, not the student's;
+nor is a function's closing "}" when the function returns before it (at -O0
+that line holds only the unwinding of its locals, run by an exception).
 Exit code 1 when anything is left uncovered.
 """
 import glob
@@ -19,6 +26,13 @@ import json
 import os
 import subprocess
 import sys
+
+
+# Checks that grade more than the one function their name says.
+CHECK_FUNCTIONS = {
+    "bvh_performance": ["construct_bvh", "bbox_intersect", "bvh_intersect", "bvh_has_intersection"],
+    "mis_heuristics": ["power_heuristic", "balance_heuristic"],
+}
 
 
 def tasks_of_functions(assignments):
@@ -31,8 +45,8 @@ def tasks_of_functions(assignments):
             names = []
             if task["check"] == "image":
                 names = [s.split(".")[-1] for s in task["params"]["student_functions"]]
-            elif task["check"] == "bvh_performance":
-                names = ["construct_bvh", "bbox_intersect", "bvh_intersect", "bvh_has_intersection"]
+            elif task["check"] in CHECK_FUNCTIONS:
+                names = CHECK_FUNCTIONS[task["check"]]
             else:
                 names = [task["check"]]
             for n in names:
@@ -57,8 +71,13 @@ def short_name(demangled):
 
 
 def main():
-    build, solution, assignments = sys.argv[1:4]
+    build, solution, assignments = (os.path.realpath(a) for a in sys.argv[1:4])
     solution = os.path.realpath(solution)
+    written = None  # relative paths of the files the solution writes
+    if len(sys.argv) > 4:
+        own = os.path.realpath(sys.argv[4])
+        written = {os.path.relpath(os.path.join(d, f), own)
+                   for d, _, files in os.walk(own) for f in files if f.endswith(".cpp")}
     owners, exclusions = tasks_of_functions(assignments)
     gcdas = [g for g in glob.glob(os.path.join(build, "**", "*.gcda"), recursive=True)]
     if not gcdas:
@@ -71,6 +90,8 @@ def main():
             for f in data.get("files", []):
                 path = os.path.realpath(os.path.join(data.get("current_working_directory", ""), f["file"]))
                 if not path.startswith(solution):
+                    continue
+                if written is not None and os.path.relpath(path, solution) not in written:
                     continue
                 if path not in sources:
                     sources[path] = open(path).read().splitlines()
@@ -85,6 +106,9 @@ def main():
                     entry = report.setdefault(owner, {"file": os.path.relpath(path, solution), "lines": [],
                                                       "branches": [], "total_lines": 0, "total_branches": 0})
                     src = text[n - 1].strip() if n - 1 < len(text) else ""
+                    if src == "}" and line["count"] == 0 and any(
+                            a <= n <= b and n == b for (a, b, _) in spans):
+                        continue  # the unwinding of a function that returns before its end
                     excluded = next((ex for ex in exclusions if ex["function"] == owner and ex["line"] == src), None)
                     if excluded:
                         entry.setdefault("excluded", []).append((n, src, excluded["reason"]))

@@ -71,6 +71,7 @@ enum class CameraBug {
     emission_only_at_m0,  ///< zero-bounce light only with -m 0: lost with -o 1
     sky_forgotten,        ///< a camera ray that misses is black, also with -o 1
     sky_always,           ///< a camera ray that misses sees the sky, also with -o 0
+    zero_without_m0,      ///< zero-bounce light only with -o 1: -m 0 -o 0 is black
 };
 
 template <CameraBug bug>
@@ -79,6 +80,7 @@ Color camera_ray(const RenderContext& context, const Ray& ray, Rng& rng) {
     bool zero = settings.accumulate_bounces || settings.max_depth == 0;
     if (bug == CameraBug::emission_always) zero = true;
     if (bug == CameraBug::emission_only_at_m0) zero = settings.max_depth == 0;
+    if (bug == CameraBug::zero_without_m0) zero = settings.accumulate_bounces;
     std::optional<SurfaceInteraction> isect = context.intersect(ray);
     if (!isect) {
         if (bug == CameraBug::sky_forgotten) return Color(0);

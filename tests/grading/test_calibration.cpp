@@ -8,7 +8,11 @@
 // PT_CALIBRATION_TASKS=part3.5,... to measure only these tasks,
 // PT_CALIBRATION_CASES='sky|every kind' only the cases whose label contains
 // one of these (a task with none keeps all its cases),
-// PT_CALIBRATION_ALPHA and PT_CALIBRATION_BIAS_SPP to try other rules.
+// PT_CALIBRATION_ALPHA and PT_CALIBRATION_BIAS_SPP to try other rules,
+// PT_CALIBRATION_FIRST_SEED=S to grade seeds S..S+N-1 (scripts/false_failure.sh
+// splits a run over processes so), PT_CALIBRATION_FIXTURES=0 to skip the fixtures,
+// PT_CALIBRATION_FUNCTIONS=1 to measure the selected function tasks too (their
+// task failures: deterministic checks whose cases are drawn from the seed).
 // It prints, per image case, the distribution of the two statistics of the
 // noise rule (error ratio and worst tile |z|) for the reference graded as a
 // student, and then the failure count of every fixture of those parts over
@@ -70,14 +74,16 @@ TaskSpec calibrated(TaskSpec t) {
     return t;
 }
 
-/// Grades `task` on seeds 1..seeds; figures per case (by case index).
+/// Grades `task` on seeds first..first+seeds-1; figures per case (by case index).
 std::map<size_t, Figures> measure(const TaskSpec& task, const Stages& student, int seeds,
-                                  int* task_failures) {
+                                  int* task_failures, int first = 1) {
     std::map<size_t, Figures> f;
     *task_failures = 0;
-    for (int seed = 1; seed <= seeds; ++seed) {
+    for (int seed = first; seed < first + seeds; ++seed) {
         TaskResult r = grade_task(task, environment(student, uint64_t(seed)));
         *task_failures += r.status != TaskStatus::pass;
+        if (r.status != TaskStatus::pass)  // which seed, and why: to find what fails
+            std::printf("  seed %d fails: %s\n", seed, r.message.c_str());
         for (size_t i = 0; i < r.images.size(); ++i) {
             Figures& c = f[i];
             c.failures += !r.images[i].pass;
@@ -143,6 +149,12 @@ std::vector<int> parts_to_measure() {
 TEST_CASE("calibration: the reference and the fixtures over many seeds" * doctest::skip()) {
     const char* env_seeds = std::getenv("PT_CALIBRATION_SEEDS");
     const int seeds = env_seeds ? std::atoi(env_seeds) : 1000;
+    const char* env_first = std::getenv("PT_CALIBRATION_FIRST_SEED");
+    const int first = env_first ? std::atoi(env_first) : 1;
+    const char* env_fixtures = std::getenv("PT_CALIBRATION_FIXTURES");
+    const bool with_fixtures = !env_fixtures || std::string(env_fixtures) != "0";
+    const char* env_functions = std::getenv("PT_CALIBRATION_FUNCTIONS");
+    const bool with_functions = env_functions && std::string(env_functions) == "1";
     Stages reference = reference_stages();
     std::string who = "reference as student";
     if (const char* s = std::getenv("PT_CALIBRATION_STUDENT"); s && std::string(s) == "textbook") {
@@ -151,12 +163,13 @@ TEST_CASE("calibration: the reference and the fixtures over many seeds" * doctes
     }
     for (int part : parts_to_measure()) {
         for (const TaskSpec& t : manifest(part).tasks) {
-            if (t.type != TaskType::image || !selected(t.id)) continue;
+            if ((t.type != TaskType::image && !with_functions) || !selected(t.id)) continue;
             int failures = 0;
             TaskSpec task = calibrated(t);
-            auto f = measure(task, reference, seeds, &failures);
+            auto f = measure(task, reference, seeds, &failures, first);
             print(who, task, f, seeds, failures);
         }
+        if (!with_fixtures) continue;
         const int n = std::min(seeds, 50);
         for (const fixtures::Fixture& fx : fixtures::fixtures_of_part(part)) {
             for (const TaskSpec& t : manifest(part).tasks) {
