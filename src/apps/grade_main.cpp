@@ -18,6 +18,7 @@
 #include "grade/check_registry.h"
 #include "grade/grader.h"
 #include "grade/isolation.h"
+#include "grade/manifest.h"
 #include "grade/runners.h"
 #include "grade/sandbox.h"
 #include "grade/report.h"
@@ -141,7 +142,7 @@ GradeOptions parse(const std::vector<std::string>& args) {
             o.assets_dir = value();
         } else if (a == "--part") {
             for (const std::string& p : split(value()))
-                o.parts.push_back(int(parse_whole_number("--part", p, 1, 5)));
+                o.parts.push_back(int(parse_whole_number("--part", p, kFirstPart, kLastPart)));
         } else if (a == "--task") {
             o.tasks = split(value());
         } else {

@@ -80,4 +80,44 @@ TaskResult check_mis_heuristics(const TaskSpec& spec, const GradeEnvironment& en
 /// either answer where the rule says nothing reliable (adaptive_checks.cpp).
 TaskResult check_has_converged(const TaskSpec& spec, const GradeEnvironment& env);
 
+/// Part 6, stratified_sample_2d: one point per stratum in its own cell,
+/// uniform within the cells (chi-square) (sampler_checks.cpp).
+TaskResult check_stratified_sample_2d(const TaskSpec& spec, const GradeEnvironment& env);
+
+/// Part 6, scrambled_radical_inverse: the reference's exact values, closed
+/// values, the stratification of the first b^m indices, and uniformity over
+/// random permutations (chi-square) (sampler_checks.cpp).
+TaskResult check_scrambled_radical_inverse(const TaskSpec& spec, const GradeEnvironment& env);
+
+/// Part 9, homogeneous_transmittance: e^(-sigma_t d) per channel; 1 where
+/// sigma_t = 0 at any distance, infinite included (media_checks.cpp).
+TaskResult check_homogeneous_transmittance(const TaskSpec& spec, const GradeEnvironment& env);
+
+/// Part 9, sample_distance: collisions with pdf sigma_t e^(-sigma_t t),
+/// passes at t_max with e^(-sigma_t t_max), and the distribution of t
+/// (chi-square) (media_checks.cpp).
+TaskResult check_sample_distance(const TaskSpec& spec, const GradeEnvironment& env);
+
+/// Part 9, hg_phase: the Henyey-Greenstein closed form; integrates to 1.
+TaskResult check_hg_phase(const TaskSpec& spec, const GradeEnvironment& env);
+
+/// Part 9, sample_hg: unit directions distributed as p_HG(-dot(wo, wi))
+/// with uniform azimuth (chi-square) for g in {-0.9, -0.3, 0, 0.5, 0.95}.
+TaskResult check_sample_hg(const TaskSpec& spec, const GradeEnvironment& env);
+
+/// Part 8, emit_photon: the ray of sample_Le and the flux of equation 2,
+/// photon by photon; N photons' flux sums to the lights' power (photon_checks.cpp).
+TaskResult check_emit_photon(const TaskSpec& spec, const GradeEnvironment& env);
+
+/// Part 8, build_kdtree: the layout of stages/kdtree.h; the reference's
+/// queries on the student's tree equal brute force.
+TaskResult check_build_kdtree(const TaskSpec& spec, const GradeEnvironment& env);
+
+/// Part 8, k_nearest: the student's query on reference trees against brute
+/// force (uniform, clustered, duplicate, planar, collinear, tiny sets).
+TaskResult check_k_nearest(const TaskSpec& spec, const GradeEnvironment& env);
+
+/// Part 8, density_estimate: equation 1 for the three kernels; uniform photons.
+TaskResult check_density_estimate(const TaskSpec& spec, const GradeEnvironment& env);
+
 }  // namespace pt

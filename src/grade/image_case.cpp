@@ -53,6 +53,52 @@ uint64_t fnv1a(const std::string& s, uint64_t h = 1469598103934665603ull) {
     return h;
 }
 
+/// Photon mapping's keys (Part 8): "photons", "caustic_photons", "knn"
+/// (0: fixed radius), "radius", "photon_kernel", "photon_view" and
+/// "photon_seed" (required with pm: one photon map for every render, so
+/// that renders differ only by camera noise and the noise rule applies).
+void parse_photon_keys(const json& j, ImageCase& c, const std::string& where) {
+    PhotonSettings& ps = c.settings.photon;
+    const bool pm = c.settings.integrator == IntegratorKind::pm;
+    for (const char* k :
+         {"photons", "caustic_photons", "knn", "radius", "photon_kernel", "photon_view", "photon_seed"})
+        if (j.contains(k) && !pm)
+            throw InputError(where + "." + k + ": applies only to \"integrator\": \"pm\"");
+    if (!pm) return;
+    if (!j.contains("photon_seed") || !j["photon_seed"].is_number_integer() ||
+        j["photon_seed"].get<long long>() < 0)
+        throw InputError(where + ".photon_seed: expected a non-negative integer (pm needs one photon map "
+                         "for every render)");
+    ps.fixed_seed = true;
+    ps.seed = j["photon_seed"].get<uint64_t>();
+    if (j.contains("photons")) ps.photons = uint64_t(positive_int(j, "photons", where));
+    if (j.contains("caustic_photons")) ps.caustic_photons = uint64_t(positive_int(j, "caustic_photons", where));
+    if (j.contains("knn")) {
+        if (!j["knn"].is_number_integer() || j["knn"].get<long long>() < 0 || j["knn"].get<long long>() > 100000)
+            throw InputError(where + ".knn: expected an integer from 0 to 100000");
+        ps.knn = j["knn"].get<int>();
+    }
+    if (j.contains("radius")) {
+        if (!j["radius"].is_number() || !(j["radius"].get<double>() > 0))
+            throw InputError(where + ".radius: expected a positive number");
+        ps.radius = j["radius"].get<double>();
+    }
+    if (j.contains("photon_kernel")) {
+        std::string k = j["photon_kernel"].is_string() ? j["photon_kernel"].get<std::string>() : "";
+        bool ok = false;
+        for (PhotonKernel x : {PhotonKernel::box, PhotonKernel::cone, PhotonKernel::epanechnikov})
+            if (k == to_string(x)) ps.kernel = x, ok = true;
+        if (!ok) throw InputError(where + ".photon_kernel: expected box, cone or epanechnikov");
+    }
+    if (j.contains("photon_view")) {
+        std::string v = j["photon_view"].is_string() ? j["photon_view"].get<std::string>() : "";
+        bool ok = false;
+        for (PhotonView x : {PhotonView::none, PhotonView::caustic, PhotonView::global})
+            if (v == to_string(x)) ps.view = x, ok = true;
+        if (!ok) throw InputError(where + ".photon_view: expected none, caustic or global");
+    }
+}
+
 }  // namespace
 
 ImageCase parse_image_case(const json& j, const std::string& where) {
@@ -74,7 +120,15 @@ ImageCase parse_image_case(const json& j, const std::string& where) {
                                         "samples_per_batch",
                                         "max_tolerance",
                                         "russian_roulette",
-                                        "rr_depth"};
+                                        "rr_depth",
+                                        "sampler",
+                                        "photons",
+                                        "caustic_photons",
+                                        "knn",
+                                        "radius",
+                                        "photon_kernel",
+                                        "photon_view",
+                                        "photon_seed"};
     for (auto it = j.begin(); it != j.end(); ++it)
         if (!keys.count(it.key())) throw InputError(where + ": unknown key \"" + it.key() + "\"");
     for (const char* k : {"scene", "integrator", "spp"})
@@ -85,11 +139,13 @@ ImageCase parse_image_case(const json& j, const std::string& where) {
     c.label = j.value("label", c.scene);
     std::string kind = j["integrator"].is_string() ? j["integrator"].get<std::string>() : "";
     bool found = false;
-    for (IntegratorKind k : {IntegratorKind::normals, IntegratorKind::depth,
-                             IntegratorKind::whitted, IntegratorKind::direct, IntegratorKind::path})
+    for (IntegratorKind k :
+         {IntegratorKind::normals, IntegratorKind::depth, IntegratorKind::whitted,
+          IntegratorKind::direct, IntegratorKind::path, IntegratorKind::pm, IntegratorKind::volpath})
         if (kind == to_string(k)) c.settings.integrator = k, found = true;
     if (!found)
-        throw InputError(where + ".integrator: expected normals, depth, whitted, direct or path");
+        throw InputError(where +
+                         ".integrator: expected normals, depth, whitted, direct, path, pm or volpath");
     c.settings.spp = positive_int(j, "spp", where);
     if (j.contains("width")) c.width = positive_int(j, "width", where);
     if (j.contains("height")) c.height = positive_int(j, "height", where);
@@ -148,6 +204,11 @@ ImageCase parse_image_case(const json& j, const std::string& where) {
             throw InputError(where + ".mis_heuristic: expected power or balance");
         c.settings.mis_heuristic = h == "power" ? MisHeuristic::power : MisHeuristic::balance;
     }
+    if (j.contains("sampler")) {  // --sampler (Part 6)
+        if (!j["sampler"].is_string()) throw InputError(where + ".sampler: expected a sampler name");
+        c.settings.sampler = parse_sampler_kind(j["sampler"].get<std::string>(), where + ".sampler");
+    }
+    parse_photon_keys(j, c, where);
     if (j.contains("max_mean_spp")) {
         if (!j["max_mean_spp"].is_number())
             throw InputError(where + ".max_mean_spp: expected a number");
@@ -210,6 +271,14 @@ std::string case_fingerprint(const ImageCase& c, const std::string& assets_dir) 
     else if (s.rr_depth != RenderSettings{}.rr_depth)
         settings << " rr" << s.rr_depth;
     if (s.mis_heuristic != MisHeuristic::power) settings << " " << to_string(s.mis_heuristic);
+    // Parts 6 and 8 likewise: only what differs from the defaults.
+    if (s.sampler != SamplerKind::independent) settings << " sampler " << to_string(s.sampler);
+    if (s.integrator == IntegratorKind::pm) {
+        const PhotonSettings& ps = s.photon;
+        settings << " photons " << ps.photons << " " << ps.caustic_photons << " knn " << ps.knn
+                 << " r " << ps.radius << " " << to_string(ps.kernel) << " " << to_string(ps.view)
+                 << " seed " << ps.seed;
+    }
     char hex[17];
     std::snprintf(hex, sizeof hex, "%016llx",
                   (unsigned long long)fnv1a(settings.str(), fnv1a(inputs)));

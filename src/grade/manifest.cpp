@@ -89,7 +89,9 @@ PartManifest read_manifest(const std::string& path, int expected_part) {
     PartManifest m;
     m.path = path;
     m.part = require(j, "part", json::value_t::number_unsigned, path).get<int>();
-    if (m.part < 1 || m.part > 5) throw InputError(path + ".part: expected 1 to 5");
+    if (m.part < kFirstPart || m.part > kLastPart)
+        throw InputError(path + ".part: expected " + std::to_string(kFirstPart) + " to " +
+                         std::to_string(kLastPart));
     if (expected_part != 0 && m.part != expected_part)
         throw InputError(path + ".part: is " + std::to_string(m.part) + " but the file is in part" +
                          std::to_string(expected_part) + "/");
@@ -110,7 +112,7 @@ PartManifest read_manifest(const std::string& path, int expected_part) {
 std::vector<PartManifest> read_manifests(const std::string& assignments_dir,
                                          std::vector<std::string>* notes) {
     std::vector<PartManifest> manifests;
-    for (int part = 1; part <= 5; ++part) {
+    for (int part = kFirstPart; part <= kLastPart; ++part) {
         std::string path = assignments_dir + "/part" + std::to_string(part) + "/grading.json";
         if (!std::ifstream(path)) {
             if (notes)

@@ -24,6 +24,11 @@
 
 namespace pt {
 
+/// The course parts a manifest may belong to: 1 to 9 (Part 7, BDPT, and
+/// any part without a grading.json are simply skipped by read_manifests).
+constexpr int kFirstPart = 1;
+constexpr int kLastPart = 9;
+
 struct PartManifest {
     int part = 0;
     std::string title;
@@ -31,11 +36,11 @@ struct PartManifest {
     std::vector<TaskSpec> tasks;
 };
 
-/// Reads and validates one manifest; `expected_part` (1 to 5, or 0 for
-/// any) must match its "part".
+/// Reads and validates one manifest; `expected_part` (kFirstPart to
+/// kLastPart, or 0 for any) must match its "part".
 PartManifest read_manifest(const std::string& path, int expected_part = 0);
 
-/// The manifests of parts 1 to 5 found under `assignments_dir`
+/// The manifests of parts kFirstPart to kLastPart found under `assignments_dir`
 /// (partN/grading.json). A part without a manifest is skipped, with a note
 /// appended to `notes`.
 std::vector<PartManifest> read_manifests(const std::string& assignments_dir,

@@ -43,6 +43,19 @@ const std::vector<Runner>& runners() {
          {"direct.estimate_direct_lighting_mis", "direct.one_bounce_radiance"}},
         {"at_least_one_bounce_radiance", {"global.at_least_one_bounce_radiance"}},
         {"est_radiance_global_illumination", {"global.est_radiance_global_illumination"}},
+        {"stratified_sample_2d", {"sampler.stratified_sample_2d"}},
+        {"scrambled_radical_inverse", {"sampler.scrambled_radical_inverse"}},
+        {"emit_photon", {"photon.emit_photon"}},
+        {"build_kdtree", {"photon.build_kdtree"}},
+        {"k_nearest", {"photon.k_nearest"}},
+        {"density_estimate", {"photon.density_estimate"}},
+        {"photon", {"photon.emit_photon", "photon.build_kdtree", "photon.k_nearest",
+                    "photon.density_estimate"}},
+        {"homogeneous_transmittance", {"media.homogeneous_transmittance"}},
+        {"sample_distance", {"media.sample_distance"}},
+        {"hg_phase", {"media.hg_phase"}},
+        {"sample_hg", {"media.sample_hg"}},
+        {"in_scattered_radiance", {"media.in_scattered_radiance"}},
     };
     return table;
 }

@@ -45,6 +45,20 @@ const Slot kSlots[] = {
     {"global", Stage::global, [](Stages& to, const Stages& from) { to.global = from.global; }},
     PT_FUNCTION_SLOT(global, at_least_one_bounce_radiance),
     PT_FUNCTION_SLOT(global, est_radiance_global_illumination),
+    {"sampler", Stage::sampler, [](Stages& to, const Stages& from) { to.sampler = from.sampler; }},
+    PT_FUNCTION_SLOT(sampler, stratified_sample_2d),
+    PT_FUNCTION_SLOT(sampler, scrambled_radical_inverse),
+    {"photon", Stage::photon, [](Stages& to, const Stages& from) { to.photon = from.photon; }},
+    PT_FUNCTION_SLOT(photon, emit_photon),
+    PT_FUNCTION_SLOT(photon, build_kdtree),
+    PT_FUNCTION_SLOT(photon, k_nearest),
+    PT_FUNCTION_SLOT(photon, density_estimate),
+    {"media", Stage::media, [](Stages& to, const Stages& from) { to.media = from.media; }},
+    PT_FUNCTION_SLOT(media, homogeneous_transmittance),
+    PT_FUNCTION_SLOT(media, sample_distance),
+    PT_FUNCTION_SLOT(media, hg_phase),
+    PT_FUNCTION_SLOT(media, sample_hg),
+    PT_FUNCTION_SLOT(media, in_scattered_radiance),
 };
 
 #undef PT_FUNCTION_SLOT

@@ -1,5 +1,6 @@
 #include "grade/student_calls.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdint>
@@ -69,6 +70,14 @@ void put(const std::optional<Hit>& h) {
 }
 void put(const BSDFSample& s) { put(s.wi), put(s.f), put(s.pdf), put(s.is_delta), put(s.eta); }
 void put(const PixelResult& p) { put(p.radiance), put(p.samples); }
+void put(const DistanceSample& d) { put(d.t), put(d.pdf), put(d.scattered); }
+void put(const EmittedPhoton& e) { put(e.ray), put(e.flux), put(e.valid); }
+void put(const KdTree& t) {
+    put(uint64_t(t.points.size())), put(uint64_t(t.ids.size())), put(uint64_t(t.axis.size()));
+    put_bytes(t.points.data(), t.points.size() * sizeof(Vec3));
+    put_bytes(t.ids.data(), t.ids.size() * sizeof(uint32_t));
+    put_bytes(t.axis.data(), t.axis.size());
+}
 
 // Reading (replay mode): every read is bounds-checked.
 [[noreturn]] void bad(const std::string& what) {
@@ -116,6 +125,21 @@ void get(std::optional<Hit>& h) {
 }
 void get(BSDFSample& s) { get(s.wi), get(s.f), get(s.pdf), get(s.is_delta), get(s.eta); }
 void get(PixelResult& p) { get(p.radiance), get(p.samples); }
+void get(DistanceSample& d) { get(d.t), get(d.pdf), get(d.scattered); }
+void get(EmittedPhoton& e) { get(e.ray), get(e.flux), get(e.valid); }
+// A kd-tree of at most 2^24 points (the checks build far smaller ones);
+// kdtree_is_valid judges the rest, sizes included.
+constexpr uint64_t kMaxTreePoints = uint64_t(1) << 24;
+void get(KdTree& t) {
+    uint64_t n = 0, ni = 0, na = 0;
+    get(n), get(ni), get(na);
+    if (n > kMaxTreePoints || ni > kMaxTreePoints || na > kMaxTreePoints)
+        bad("a kd-tree of more than 2^24 points");
+    t.points.resize(size_t(n)), t.ids.resize(size_t(ni)), t.axis.resize(size_t(na));
+    get_bytes(t.points.data(), t.points.size() * sizeof(Vec3));
+    get_bytes(t.ids.data(), t.ids.size() * sizeof(uint32_t));
+    get_bytes(t.axis.data(), t.axis.size());
+}
 
 /// Logs the exception being handled (call inside a catch block).
 void log_exception() {
@@ -236,6 +260,51 @@ bool replay_bbox(const BBox&, const Ray&, double& t0, double& t1) {
     bool hit = false;
     get(hit), get(t0), get(t1);
     return hit;
+}
+
+// k_nearest returns its neighbours through `out`: the log holds their count
+// (at most the tree's size, or the bound below) and each id and distance.
+constexpr int kKNearestId = 26;
+constexpr uint64_t kMaxNeighbors = uint64_t(1) << 24;
+void record_k_nearest(const KdTree& tree, const Vec3& p, int k, double max_dist2,
+                      std::vector<Neighbor>& out) {
+    Depth d;
+    if (g_depth > 1 || g_mode != CallMode::record || g_paused != 0)
+        return g_inner.photon.k_nearest(tree, p, k, max_dist2, out);
+    try {
+        g_inner.photon.k_nearest(tree, p, k, max_dist2, out);
+    } catch (...) {
+        log_exception();
+        throw;
+    }
+    std::lock_guard<std::mutex> lock(g_log_mutex);
+    put(uint8_t(kKNearestId));
+    const uint64_t n = std::min<uint64_t>(out.size(), kMaxNeighbors);
+    put(n);
+    for (uint64_t i = 0; i < n; ++i)
+        put(uint32_t(out[i].id)), put(out[i].dist2);
+}
+void stand_in_k_nearest(const KdTree& tree, const Vec3& p, int k, double max_dist2,
+                        std::vector<Neighbor>& out) {
+    Depth d;
+    try {
+        g_inner.photon.k_nearest(tree, p, k, max_dist2, out);
+    } catch (...) {
+        out.clear();
+    }
+}
+void replay_k_nearest(const KdTree& tree, const Vec3&, int, double, std::vector<Neighbor>& out) {
+    begin_record(kKNearestId, "k_nearest");
+    uint64_t n = 0;
+    get(n);
+    if (n > std::max<uint64_t>(tree.size(), 1024) || n > kMaxNeighbors)
+        bad("k_nearest returned more neighbours than the tree has points");
+    out.resize(size_t(n));
+    for (Neighbor& x : out) {
+        uint32_t id = 0;
+        get(id), get(x.dist2);
+        x.id = id;
+    }
 }
 
 // construct_bvh reorders primitives[start, end) and returns a tree: the log
@@ -382,6 +451,14 @@ PT_ACCESS(balance_heuristic, direct.balance_heuristic)
 PT_ACCESS(estimate_direct_lighting_mis, direct.estimate_direct_lighting_mis)
 PT_ACCESS(stratified_sample_2d, sampler.stratified_sample_2d)
 PT_ACCESS(scrambled_radical_inverse, sampler.scrambled_radical_inverse)
+PT_ACCESS(emit_photon, photon.emit_photon)
+PT_ACCESS(build_kdtree, photon.build_kdtree)
+PT_ACCESS(density_estimate, photon.density_estimate)
+PT_ACCESS(homogeneous_transmittance, media.homogeneous_transmittance)
+PT_ACCESS(sample_distance, media.sample_distance)
+PT_ACCESS(hg_phase, media.hg_phase)
+PT_ACCESS(sample_hg, media.sample_hg)
+PT_ACCESS(in_scattered_radiance, media.in_scattered_radiance)
 #undef PT_ACCESS
 
 // The slots by stage_mix's names; the ids are the log's tags.
@@ -429,6 +506,19 @@ const SlotEntry kSlots[] = {
     PT_SLOT(20, direct, power_heuristic),
     PT_SLOT(21, direct, balance_heuristic),
     PT_SLOT(22, direct, estimate_direct_lighting_mis),
+    PT_SLOT(23, photon, emit_photon),
+    PT_SLOT(24, photon, build_kdtree),
+    PT_SLOT(25, photon, density_estimate),
+    {"photon.k_nearest",
+     [](Stages& s, int v) {
+         s.photon.k_nearest = v == 0 ? record_k_nearest : v == 1 ? replay_k_nearest
+                                                                  : stand_in_k_nearest;
+     }},
+    PT_SLOT(27, media, homogeneous_transmittance),
+    PT_SLOT(28, media, sample_distance),
+    PT_SLOT(29, media, hg_phase),
+    PT_SLOT(30, media, sample_hg),
+    PT_SLOT(31, media, in_scattered_radiance),
 };
 
 #undef PT_SLOT

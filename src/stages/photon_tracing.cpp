@@ -24,7 +24,8 @@ constexpr uint64_t kChunk = 4096;                      // photons per unit of wo
 
 /// Traces photon `index` of the batch, appending the photons it stores.
 void trace_one(const RenderContext& context, const PhotonTracing& tracing, uint64_t index, std::vector<Photon>& out) {
-    Rng rng = Rng::substream(context.settings.seed, index, tracing.stream, kPhotonStream);
+    const PhotonSettings& ps = context.settings.photon;
+    Rng rng = Rng::substream(ps.fixed_seed ? ps.seed : context.settings.seed, index, tracing.stream, kPhotonStream);
     double light_probability = 0;
     const Light* light = context.lights.sample_by_power(rng.next_1d(), &light_probability);
     if (!light || !(light_probability > 0)) return;

@@ -61,6 +61,11 @@ struct PhotonSettings {
     double alpha = 2.0 / 3.0;           ///< --alpha: fraction of new photons sppm keeps per pass
     PhotonView view = PhotonView::none;  ///< --photon-view
     int max_bounces = 100;              ///< a photon path's hard cap (Russian roulette ends it sooner)
+    /// The photons' seed instead of --seed (not a flag): the grader's image
+    /// cases trace one photon map for every render, so that the converged
+    /// reference and the student's renders differ only by camera noise.
+    bool fixed_seed = false;
+    uint64_t seed = 0;
 };
 
 /// How adaptive sampling decides that a pixel may stop (`--adaptive`).

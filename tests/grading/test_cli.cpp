@@ -127,7 +127,14 @@ TEST_CASE("grade: writes the three reports; exit 1 unless every task passes; 2 f
     for (const char* f : {"report.md", "report.html", "report.json"})
         CHECK(std::filesystem::exists(dir + "/" + f));
     nlohmann::json j = nlohmann::json::parse(std::ifstream(dir + "/report.json"));
-    CHECK(j["tasks"].size() == 22);  // parts 1 to 5
+    size_t tasks = 0;  // every task of every part with a manifest
+    for (int part = 1; part <= 9; ++part) {
+        std::ifstream m(std::string(PT_SOURCE_DIR) + "/assignments/part" + std::to_string(part) +
+                        "/grading.json");
+        if (m) tasks += nlohmann::json::parse(m)["tasks"].size();
+    }
+    CHECK(tasks >= 22);
+    CHECK(j["tasks"].size() == tasks);
     CHECK((code == 0) == j["all_passed"].get<bool>());
     bool handout = j["tasks"][0]["status"] == "not implemented";
     if (handout) {

@@ -103,6 +103,48 @@ Color est_radiance_global_illumination(const RenderContext&, const Ray&, Rng&) {
 }
 #endif
 
+#ifdef PT_WITHHOLD_STRATIFIED_SAMPLE_2D
+Vec2 stratified_sample_2d(int, int, int, Vec2) { withheld("stratified_sample_2d"); }
+#endif
+#ifdef PT_WITHHOLD_SCRAMBLED_RADICAL_INVERSE
+double scrambled_radical_inverse(uint64_t, const DigitPermutation&) {
+    withheld("scrambled_radical_inverse");
+}
+#endif
+#ifdef PT_WITHHOLD_EMIT_PHOTON
+EmittedPhoton emit_photon(const Light&, double, uint64_t, Vec2, Vec2) { withheld("emit_photon"); }
+#endif
+#ifdef PT_WITHHOLD_BUILD_KDTREE
+KdTree build_kdtree(const std::vector<Vec3>&) { withheld("build_kdtree"); }
+#endif
+#ifdef PT_WITHHOLD_K_NEAREST
+void k_nearest(const KdTree&, const Vec3&, int, double, std::vector<Neighbor>&) {
+    withheld("k_nearest");
+}
+#endif
+#ifdef PT_WITHHOLD_DENSITY_ESTIMATE
+Color density_estimate(const std::vector<PhotonContribution>&, double, PhotonKernel) {
+    withheld("density_estimate");
+}
+#endif
+#ifdef PT_WITHHOLD_HOMOGENEOUS_TRANSMITTANCE
+Color homogeneous_transmittance(const Color&, double) { withheld("homogeneous_transmittance"); }
+#endif
+#ifdef PT_WITHHOLD_SAMPLE_DISTANCE
+DistanceSample sample_distance(double, double, double) { withheld("sample_distance"); }
+#endif
+#ifdef PT_WITHHOLD_HG_PHASE
+double hg_phase(double, double) { withheld("hg_phase"); }
+#endif
+#ifdef PT_WITHHOLD_SAMPLE_HG
+Vec3 sample_hg(const Vec3&, double, Vec2) { withheld("sample_hg"); }
+#endif
+#ifdef PT_WITHHOLD_IN_SCATTERED_RADIANCE
+Color in_scattered_radiance(const RenderContext&, const Vec3&, const Vec3&, int, Rng&) {
+    withheld("in_scattered_radiance");
+}
+#endif
+
 }  // namespace pt::reference
 
 // Engine helpers that compute a graded answer whole (scripts/weaken_reference.sh):
