@@ -41,7 +41,7 @@ class CrossingBvh {
         while (top > 0) {
             const Node& node = nodes_[stack[--top]];
             ++thread_counters().nodes_visited;
-            if (!enters(node.box, ray, inv_d)) continue;
+            if (!ray_enters(node.box, ray, inv_d, kInfinity)) continue;  // every crossing counts
             if (node.count == 0) {
                 stack[top++] = node.second;
                 stack[top++] = uint32_t(&node - nodes_.data()) + 1;
@@ -77,21 +77,6 @@ class CrossingBvh {
         uint32_t first = 0, count = 0;  ///< leaf: triangles_[first, first + count); inner: count 0
         uint32_t second = 0;            ///< inner: the right child (the left is the next node)
     };
-
-    /// Slab test over [t_min, inf), the far distance widened by 2 gamma(3)
-    /// (pbrt-v3 section 3.9.2) so that rounding never culls a crossed box.
-    static bool enters(const BBox& box, const Ray& ray, const Vec3& inv_d) {
-        double t_near = ray.t_min, t_far = kInfinity;
-        for (int a = 0; a < 3; ++a) {
-            double t0 = (box.min[a] - ray.o[a]) * inv_d[a], t1 = (box.max[a] - ray.o[a]) * inv_d[a];
-            if (t0 > t1) std::swap(t0, t1);
-            t1 *= 1 + 2 * gamma(3);
-            t_near = t0 > t_near ? t0 : t_near;
-            t_far = t1 < t_far ? t1 : t_far;
-            if (t_near > t_far) return false;
-        }
-        return true;
-    }
 
     template <typename BoxOf>
     uint32_t build(uint32_t begin, uint32_t end, const BoxOf& box_of) {

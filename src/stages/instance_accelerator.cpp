@@ -24,23 +24,6 @@ struct InstanceNode {
 
 constexpr uint32_t kLeafSize = 2;
 
-/// Whether the ray enters `box` within [t_min, t_max]; NaN from 0 * inf (a
-/// ray in a slab's plane) loses every comparison and so leaves the interval
-/// as it was. The far distance is widened by 2 gamma(3) (pbrt-v3 section
-/// 3.9.2), so rounding never culls a box the ray touches.
-bool ray_enters(const BBox& box, const Ray& ray, const Vec3& inv_d, double t_max) {
-    double t_near = ray.t_min, t_far = t_max;
-    for (int a = 0; a < 3; ++a) {
-        double t0 = (box.min[a] - ray.o[a]) * inv_d[a], t1 = (box.max[a] - ray.o[a]) * inv_d[a];
-        if (t0 > t1) std::swap(t0, t1);
-        t1 *= 1 + 2 * gamma(3);
-        t_near = t0 > t_near ? t0 : t_near;
-        t_far = t1 < t_far ? t1 : t_far;
-        if (t_near > t_far) return false;
-    }
-    return true;
-}
-
 class InstanceAccelerator : public Accelerator {
   public:
     InstanceAccelerator(std::unique_ptr<Accelerator> own, const Scene& scene, const Stages& stages,
