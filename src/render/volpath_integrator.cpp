@@ -16,7 +16,7 @@
 // `--direct` chooses how emission is found, as in the path tracer: `light`
 // (the default) counts light by next-event estimation and emission found by
 // sampled directions only after a delta bounce (or straight from the
-// camera); `mis` weighs both by the power heuristic on the directions'
+// camera); `mis` weighs both by --mis-heuristic (power by default) on the directions'
 // densities (light pdf against phase or BSDF pdf; the distance sampling is
 // the same in both strategies, so it cancels); `hemisphere` samples
 // directions only (phase sampling alone, for `bench accuracy`).
@@ -88,7 +88,7 @@ struct Vertex {
 
 /// Next-event estimation at v: -l samples per light (one per delta light),
 /// each times the transmittance of its shadow ray, weighted against v's own
-/// sampling by the power heuristic when `mis`.
+/// sampling (mis_weight: --mis-heuristic) when `mis`.
 Color sample_lights(const RenderContext& context, const Vertex& v, bool mis, Rng& rng) {
     const MediaStage& stage = context.stages.media;
     const LightSampleContext ref = v.light_context();
@@ -104,7 +104,9 @@ Color sample_lights(const RenderContext& context, const Vertex& v, bool mis, Rng
             // The shadow ray last: it is the expensive part.
             const Color T = shadow_transmittance(context, v.ray_to(s.p), v.medium_towards(context.scene, s.wi), rng);
             if (T.is_black()) continue;
-            const double w = s.is_delta || !mis ? 1.0 : power_heuristic(n, s.pdf, 1, v.pdf(stage, s.wi));
+            // The heuristic --mis-heuristic names, as the emission found by sampled
+            // directions is weighted (bsdf_sample_mis_weight): the two weights sum to 1.
+            const double w = s.is_delta || !mis ? 1.0 : mis_weight(context, n, s.pdf, 1, v.pdf(stage, s.wi));
             sum += f * s.L * T * (w / s.pdf);
         }
         L += sum / double(n);

@@ -196,9 +196,13 @@ TEST_CASE("medium furnace: a non-absorbing medium under a sky of radiance 1 rend
         const char* name;
         std::string medium;
         DirectStrategy direct;
+        MisHeuristic heuristic = MisHeuristic::power;
     } cases[] = {
         {"homogeneous, light sampling", R"({"sigma_s": [0.5, 1, 2], "g": 0.6})", DirectStrategy::light},
         {"homogeneous, MIS", R"({"sigma_s": [0.5, 1, 2], "g": -0.3})", DirectStrategy::mis},
+        // Light samples and phase samples must use the same heuristic, or their weights do not sum to 1.
+        {"homogeneous, MIS by the balance heuristic", R"({"sigma_s": [0.5, 1, 2], "g": -0.3})", DirectStrategy::mis,
+         MisHeuristic::balance},
         {"the cloud's density (scaled into the ball)", R"({"sigma_s": [3, 3, 3], "density": ")" +
                                                            test::source_path("assets/media/cloud.grid") + R"("})",
          DirectStrategy::light},
@@ -207,6 +211,7 @@ TEST_CASE("medium furnace: a non-absorbing medium under a sky of radiance 1 rend
         CAPTURE(c.name);
         RenderSettings settings = volpath_settings(100000, 64);
         settings.direct = c.direct;
+        settings.mis_heuristic = c.heuristic;
         RenderResult r = render(scene_from(furnace(c.medium)), settings, IntegratorKind::volpath);
         for (int ch = 0; ch < 3; ++ch) {
             PixelStats p = channel_stats(r.image, ch);
