@@ -46,6 +46,7 @@ all_groups=(
   "sky42|4|part4.2|sky|0"
   "mis38|3|part3.8|a mirror, rough gold|0"
   "gold41|4|part4.1|rough gold and frosted glass|0"
+  "fog95|9|part9.5||0"
 )
 
 # Round-robin over the groups (seeds 1.. of every group, then the next

@@ -216,7 +216,8 @@ class ReferenceBvh final : public Accelerator, public InspectableBvh {
 std::unique_ptr<Accelerator> make_reference_bvh(const Scene& scene, const IntersectStage& stage,
                                                 const AcceleratorSettings& settings) {
     FlatBvh bvh = build_flat_bvh(scene, settings);
-    if (settings.width == 4) return make_wide_bvh(scene, stage, std::move(bvh));
+    if (settings.width == 4 || settings.width == 8)
+        return make_wide_bvh(scene, stage, std::move(bvh), settings.width, settings.simd);
     // The inlined routine only where it is the routine the stage asks for:
     // with student (or any other) triangle code, call through the table.
     if (stage.intersect_triangle == &reference::intersect_triangle)

@@ -1,32 +1,36 @@
-// The reference BVH with 4-wide nodes (`--bvh-width 4`): the binary SAH
-// tree of stages/flat_bvh.h collapsed so that each node holds up to four
-// children's boxes, tested together with one SSE instruction per plane.
+// The reference BVH with 4- or 8-wide nodes (`--bvh-width 4|8`): the binary
+// SAH tree of stages/flat_bvh.h collapsed so that each node holds up to four
+// (eight) children's boxes, tested together with one SSE (AVX) instruction
+// per plane.
 //
 // Why: the binary traversal is bound by latency and branch mispredictions
 // (docs/bvh.md: about 26 mispredictions per incoherent ray, half of them on
 // "did the ray hit both children"), not by arithmetic. A 4-wide node
-// replaces two levels of the binary tree, so a ray takes half as many
-// dependent steps and decisions (Dammertz, Hanika and Keller, "Shallow
-// Bounding Volume Hierarchies for Fast SIMD Ray Tracing of Incoherent Rays",
-// EGSR 2008; Wald, Benthin and Boulos, "Getting rid of packets", RT 2008).
+// replaces two levels of the binary tree and an 8-wide one three, so a ray
+// takes two (three) times fewer dependent steps and decisions (Dammertz,
+// Hanika and Keller, "Shallow Bounding Volume Hierarchies for Fast SIMD Ray
+// Tracing of Incoherent Rays", EGSR 2008; Wald, Benthin and Boulos, "Getting
+// rid of packets", RT 2008; Embree's single-ray kernel uses 8-wide nodes).
 //
 // Collapse: starting from a binary node's two children, the interior child
 // of largest surface area is replaced by its two children until there are
-// four (or only leaves are left); each remaining interior child becomes a
+// W (or only leaves are left); each remaining interior child becomes a
 // wide node the same way. Leaves and the primitive order are the binary
 // tree's, so the per-primitive data (bvh_kernels.h) is shared.
 //
-// Layout: 128 bytes per node (two cache lines), structure of arrays: for
-// each of the six planes (min x, y, z, max x, y, z, as FlatBvhNode::bounds)
-// four floats, one per child; then the children: a node index, or a leaf's
-// first slot and count. Nodes are in depth-first order.
+// Layout: structure of arrays, 128 bytes per 4-wide node (two cache lines),
+// 256 per 8-wide one (four): for each of the six planes (min x, y, z, max
+// x, y, z, as FlatBvhNode::bounds) W floats, one per child; then the
+// children: a node index, or a leaf's first slot and count. Nodes are in
+// depth-first order.
 //
 // Exactness: each lane computes exactly the scalar slab test of
 // bvh_kernels.h (same float operations in the same order; MAXPS/MINPS
 // return their second operand on NaN like the scalar selects do), so every
 // box answer is the binary traversal's and the hits are the linear scan's
-// bit for bit (tests/bvh). A portable scalar loop over the lanes is used
-// where SSE is not available; it gives the same answers.
+// bit for bit (tests/bvh). The 8-wide test needs AVX; it is chosen at run
+// time (__builtin_cpu_supports), and a portable scalar loop over the lanes,
+// which gives the same answers, runs where the SIMD test cannot.
 #pragma once
 
 #include <cstdint>
@@ -39,23 +43,33 @@ namespace pt {
 
 struct Scene;
 
+template <int W>
 struct alignas(64) WideBvhNode {
-    static constexpr int kWidth = 4;
+    static constexpr int kWidth = W;
     /// bounds[plane][lane]: plane as FlatBvhNode::bounds, one lane per child;
     /// unused lanes hold an empty box (min +inf, max -inf).
-    alignas(16) float bounds[6][kWidth];
-    uint32_t child[kWidth] = {0, 0, 0, 0};  ///< interior child: node index; leaf: first slot
-    uint8_t count[kWidth] = {0, 0, 0, 0};   ///< leaf: primitives (>= 1); interior child or unused: 0
-    uint8_t valid = 0;                      ///< bit i: lane i holds a child
+    alignas(4 * W) float bounds[6][W];
+    uint32_t child[W] = {};  ///< interior child: node index; leaf: first slot
+    uint8_t count[W] = {};   ///< leaf: primitives (>= 1); interior child or unused: 0
+    uint8_t valid = 0;       ///< bit i: lane i holds a child
 };
-static_assert(sizeof(WideBvhNode) == 128, "a wide node is two cache lines");
+static_assert(sizeof(WideBvhNode<4>) == 128, "a 4-wide node is two cache lines");
+static_assert(sizeof(WideBvhNode<8>) == 256, "an 8-wide node is four cache lines");
 
-/// The binary tree collapsed into 4-wide nodes; nodes[0] is the root (a
-/// root that is a leaf becomes one node with one lane). Empty for no primitives.
-std::vector<WideBvhNode> collapse_to_wide(const FlatBvh& bvh, int* depth = nullptr);
+/// The binary tree collapsed into W-wide nodes (W = 4 or 8); nodes[0] is the
+/// root (a root that is a leaf becomes one node with one lane). Empty for no
+/// primitives. `depth`, when given, receives the deepest wide node's level.
+template <int W>
+std::vector<WideBvhNode<W>> collapse_to_wide(const FlatBvh& bvh, int* depth = nullptr);
 
-/// The accelerator over `bvh` collapsed to 4-wide nodes, with the tester
-/// that make_reference_bvh picks for `stage` (bvh_kernels.h).
-std::unique_ptr<Accelerator> make_wide_bvh(const Scene& scene, const IntersectStage& stage, FlatBvh bvh);
+/// Whether the 8-wide AVX box test can run on this processor.
+bool wide_bvh_has_avx();
+
+/// The accelerator over `bvh` collapsed to `width`-wide nodes (4 or 8), with
+/// the tester that make_reference_bvh picks for `stage` (bvh_kernels.h).
+/// `simd` false: the portable scalar box test on every machine (the tests
+/// compare it with the SIMD one).
+std::unique_ptr<Accelerator> make_wide_bvh(const Scene& scene, const IntersectStage& stage, FlatBvh bvh,
+                                           int width, bool simd = true);
 
 }  // namespace pt

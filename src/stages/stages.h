@@ -46,8 +46,13 @@ struct AcceleratorSettings {
     std::string split = "sah";  ///< sah | median | middle
     int max_leaf = 4;          ///< at most this many primitives per leaf when a split is possible
     /// `--bvh-width`: children per node of the reference BVH: 2 (the binary
-    /// tree) or 4 (collapsed, SSE; stages/bvh_wide.h). The student's tree is binary.
-    int width = 4;
+    /// tree), 4 (collapsed, SSE) or 8 (collapsed, AVX2 where the processor
+    /// has it; stages/bvh_wide.h). The student's tree is binary. The default
+    /// is the fastest measured (docs/bvh.md).
+    int width = 8;
+    /// Wide BVH box tests with SIMD instructions where available; false: the
+    /// portable scalar loop, same answers (tests compare the two).
+    bool simd = true;
 };
 
 using BuildAcceleratorFn = std::unique_ptr<Accelerator> (*)(const Scene& scene,

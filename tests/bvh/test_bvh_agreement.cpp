@@ -1,8 +1,9 @@
 // Every BVH against the linear scan: the same closest hit (same primitive,
 // same t, b1, b2 and normal, to the last bit) for 100,000 rays per mesh,
-// and any hit agreeing with closest hit. The reference BVH is 4-wide by
-// default (stages/bvh_wide.h); the binary one (--bvh-width 2) is checked
-// on a fifth of the rays.
+// and any hit agreeing with closest hit. The reference BVH is 8-wide by
+// default (stages/bvh_wide.h); the binary one (--bvh-width 2), the 4-wide
+// one, and the portable scalar box tests of both wide ones are checked on
+// a fifth of the rays.
 #include <doctest/doctest.h>
 
 #include "bvh_check.h"
@@ -37,6 +38,15 @@ void check_scene(const Scene& scene, int ray_count) {
         binary.width = 2;
         check_agrees(*make_reference_bvh(scene, kReference, binary), rays, expected);
         check_agrees(*make_reference_bvh(scene, kCalled, binary), rays, expected);
+    }
+    for (int width : {4, 8}) {
+        for (bool simd : {true, false}) {
+            INFO("reference BVH, --bvh-width " << width << (simd ? ", SIMD" : ", scalar") << " box tests");
+            AcceleratorSettings wide = settings;
+            wide.width = width;
+            wide.simd = simd;
+            check_agrees(*make_reference_bvh(scene, kReference, wide), rays, expected);
+        }
     }
     {
         INFO("reference BVH, inlined watertight triangle test (--triangle watertight)");

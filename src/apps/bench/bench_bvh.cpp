@@ -81,6 +81,8 @@ struct KernelRow {
     std::string kind;  ///< primary, diffuse, shadow
     uint64_t rays = 0;
     double mrays = 0;             ///< reference BVH (default width), inlined triangle test
+    double mrays_wide4 = 0;       ///< --bvh-width 4 (SSE)
+    double mrays_wide8 = 0;       ///< --bvh-width 8 (AVX2 where available)
     double mrays_table = 0;       ///< reference BVH, triangle test through the stage table
     double mrays_binary = 0;      ///< binary reference BVH (--bvh-width 2)
     double mrays_kdtree = 0;      ///< --accel kdtree
@@ -135,6 +137,11 @@ std::vector<KernelRow> time_kernels(const Scene& full_scene, int width, int heig
     binary_settings.width = 2;
     std::unique_ptr<Accelerator> binary = timed_build(
         [&] { return make_reference_bvh(scene, reference, binary_settings); }, &result.binary_build_seconds);
+    AcceleratorSettings wide4_settings, wide8_settings;
+    wide4_settings.width = 4;
+    wide8_settings.width = 8;
+    std::unique_ptr<Accelerator> wide4 = make_reference_bvh(scene, reference, wide4_settings);
+    std::unique_ptr<Accelerator> wide8 = make_reference_bvh(scene, reference, wide8_settings);
     std::unique_ptr<Accelerator> kdtree =
         timed_build([&] { return make_kd_tree(scene, reference); }, &result.kdtree_build_seconds);
     std::unique_ptr<Accelerator> grid =
@@ -168,7 +175,9 @@ std::vector<KernelRow> time_kernels(const Scene& full_scene, int width, int heig
             [&] { return trace_pass(*bvh_table, rays, any_hit).seconds; },
             [&] { return trace_pass(*binary, rays, any_hit).seconds; },
             [&] { return trace_pass(*kdtree, rays, any_hit).seconds; },
-            [&] { return trace_pass(*grid, rays, any_hit).seconds; }};
+            [&] { return trace_pass(*grid, rays, any_hit).seconds; },
+            [&] { return trace_pass(*wide4, rays, any_hit).seconds; },
+            [&] { return trace_pass(*wide8, rays, any_hit).seconds; }};
         if (embree) passes.push_back([&] { return embree->trace(rays, any_hit).seconds; });
         std::vector<double> best = best_times(passes, seconds);
         row.mrays = rays.size() / best[0] * 1e-6;
@@ -176,8 +185,10 @@ std::vector<KernelRow> time_kernels(const Scene& full_scene, int width, int heig
         row.mrays_binary = rays.size() / best[2] * 1e-6;
         row.mrays_kdtree = rays.size() / best[3] * 1e-6;
         row.mrays_grid = rays.size() / best[4] * 1e-6;
+        row.mrays_wide4 = rays.size() / best[5] * 1e-6;
+        row.mrays_wide8 = rays.size() / best[6] * 1e-6;
         if (embree) {
-            row.embree_mrays = rays.size() / best[5] * 1e-6;
+            row.embree_mrays = rays.size() / best[7] * 1e-6;
             if (!any_hit) {
                 std::vector<uint32_t> theirs = embree->closest_triangles(rays);
                 uint64_t same = 0;
@@ -313,11 +324,11 @@ void print_tables(const std::vector<SceneResult>& results, int width, int height
               << (embree ? EmbreeKernel::version() + " beside the reference BVH"
                          : "built without Embree")
               << ")\n\n";
-    std::vector<std::string> header = {"scene",         "rays",          "count",         "BVH4 Mrays/s",
-                                       "BVH2 Mrays/s",  "kd-tree Mrays/s", "grid Mrays/s", "via table Mrays/s",
-                                       "nodes/ray",     "tests/ray"};
+    std::vector<std::string> header = {"scene",         "rays",           "count",        "BVH8 Mrays/s",
+                                       "BVH4 Mrays/s",  "BVH2 Mrays/s",   "kd-tree Mrays/s", "grid Mrays/s",
+                                       "via table Mrays/s", "nodes/ray",  "tests/ray"};
     if (embree) {
-        for (const char* h : {"Embree Mrays/s", "BVH / Embree", "same hit"})
+        for (const char* h : {"Embree Mrays/s", "BVH8 / Embree", "BVH4 / Embree", "same hit"})
             header.push_back(h);
     }
     Table k(header, 2);
@@ -326,7 +337,8 @@ void print_tables(const std::vector<SceneResult>& results, int width, int height
             std::vector<std::string> cells = {r.name,
                                               row.kind,
                                               count(row.rays),
-                                              fixed(row.mrays, 2),
+                                              fixed(row.mrays_wide8, 2),
+                                              fixed(row.mrays_wide4, 2),
                                               fixed(row.mrays_binary, 2),
                                               fixed(row.mrays_kdtree, 2),
                                               fixed(row.mrays_grid, 2),
@@ -335,8 +347,8 @@ void print_tables(const std::vector<SceneResult>& results, int width, int height
                                               fixed(row.tests, 2)};
             if (embree) {
                 cells.push_back(fixed(row.embree_mrays, 2));
-                cells.push_back(row.embree_mrays > 0 ? fixed(row.mrays / row.embree_mrays, 2)
-                                                     : "-");
+                for (double ours : {row.mrays_wide8, row.mrays_wide4})
+                    cells.push_back(row.embree_mrays > 0 ? fixed(ours / row.embree_mrays, 2) : "-");
                 cells.push_back(row.agreement >= 0 ? fixed(100 * row.agreement, 2) + "%" : "-");
             }
             k.add(cells);
@@ -409,6 +421,8 @@ void write_json(const std::string& path, const std::vector<SceneResult>& results
             nlohmann::json kj = {{"rays", k.rays},
                                  {"mrays_per_second", k.mrays},
                                  {"via_table_mrays_per_second", k.mrays_table},
+                                 {"wide4_mrays_per_second", k.mrays_wide4},
+                                 {"wide8_mrays_per_second", k.mrays_wide8},
                                  {"binary_mrays_per_second", k.mrays_binary},
                                  {"kdtree_mrays_per_second", k.mrays_kdtree},
                                  {"grid_mrays_per_second", k.mrays_grid},
