@@ -1,5 +1,6 @@
-// Reference kd-tree (stages/kdtree.h): build by median selection, queries
-// by recursive descent, nearer side first.
+// Reference kd-tree (stages/kdtree.h): build by median selection; the
+// k-nearest query descends iteratively, nearer side first (its design and
+// what each choice bought: docs/photon_mapping.md, `bench kdtree`).
 #include "stages/kdtree.h"
 
 #include <algorithm>
@@ -28,74 +29,127 @@ void build_range(KdTree& tree, std::vector<uint32_t>& order, const std::vector<V
     build_range(tree, order, input, mid + 1, hi);
 }
 
-/// Subtrees of at most this many points are scanned, not descended.
+/// Subtrees of at most this many points are scanned, not descended (a
+/// bucket): 16 to 32 measured alike (docs/photon_mapping.md).
 constexpr size_t kScanBelow = 16;
 
-/// State of one k-nearest query: a max-heap of the best k found so far.
-struct KnnSearch {
-    const KdTree& tree;
-    Vec3 p;
-    size_t k;
-    double max_dist2;  ///< shrinks to the k-th distance once k points are found
-    std::vector<Neighbor>& heap;  ///< a max-heap by dist2 once it holds k
-
-    /// Keeps point i when it is nearer than the current k-th: the first k
-    /// found are appended and then heapified once; afterwards a nearer one
-    /// replaces the farthest at the root and sifts down (one pass, half the
-    /// work of pop_heap + push_heap).
-    void consider(size_t i) {
-        const double d2 = (tree.points[i] - p).norm2();
-        if (d2 > max_dist2) return;
-        const size_t n = heap.size();
-        if (n < k) {
-            heap.push_back({tree.ids[i], d2});
-            if (n + 1 == k) {
-                std::make_heap(heap.begin(), heap.end(), farther);
-                max_dist2 = heap.front().dist2;
-            }
-            return;
-        }
-        size_t hole = 0;
-        for (size_t child = 1; child < n; child = 2 * hole + 1) {
-            if (child + 1 < n && heap[child + 1].dist2 > heap[child].dist2) ++child;
-            if (heap[child].dist2 <= d2) break;
-            heap[hole] = heap[child];
-            hole = child;
-        }
-        heap[hole] = {tree.ids[i], d2};
-        max_dist2 = heap.front().dist2;
-    }
-
-    static bool farther(const Neighbor& a, const Neighbor& b) { return a.dist2 < b.dist2; }
-
-    /// Visits the subtree [lo, hi) whose cell lies at squared distance
-    /// cell_dist2 from p; offset[a] is p's distance to the cell along axis a
-    /// (0 inside). Arya and Mount's incremental distance (1993): crossing a
-    /// plane replaces one axis's term of the sum, so a far cell is skipped
-    /// when its whole box, not only its nearest plane, is beyond the k-th
-    /// distance.
-    void visit(size_t lo, size_t hi, double cell_dist2, double offset[3]) {
-        // A small subtree is cheaper to scan than to descend (a bucket).
-        if (hi - lo <= kScanBelow) {
-            for (size_t i = lo; i < hi; ++i) consider(i);
-            return;
-        }
-        const size_t mid = lo + (hi - lo) / 2;
-        const int axis = tree.axis[mid];
-        const double delta = p[axis] - tree.points[mid][axis];
-        // The side of the plane that holds p first; the other side only if
-        // its cell is nearer than the current k-th distance.
-        const bool left_first = delta <= 0;
-        visit(left_first ? lo : mid + 1, left_first ? mid : hi, cell_dist2, offset);
-        consider(mid);
-        const double old_offset = offset[axis];
-        const double far_dist2 = cell_dist2 - old_offset * old_offset + delta * delta;
-        if (far_dist2 > max_dist2) return;
-        offset[axis] = delta;
-        visit(left_first ? mid + 1 : lo, left_first ? hi : mid, far_dist2, offset);
-        offset[axis] = old_offset;
-    }
+/// A candidate of a k-nearest query: a position in tree order, not yet an
+/// id (ids are looked up once, for the k answers, not for every candidate).
+struct Candidate {
+    double dist2;  ///< squared distance to the query point, scene units^2
+    uint32_t at;   ///< index into tree.points
 };
+
+/// A subtree still to visit, with what the pruning test needs: the
+/// squared distance from p to the subtree's cell, the offsets that sum to
+/// it (Arya and Mount's incremental distance, 1993: crossing a plane
+/// replaces one axis's term, so a far cell is skipped when its whole box,
+/// not only its nearest plane, lies beyond the k-th distance) and the node
+/// point on the plane between the cell and its sibling.
+struct PendingCell {
+    uint32_t lo, hi;     ///< the subtree's range [lo, hi)
+    uint32_t node;       ///< the parent's node point, on this cell's boundary
+    double dist2;        ///< squared distance from p to the cell
+    double offset[3];    ///< p's distance to the cell along each axis (0 inside)
+};
+
+/// One k-nearest query (reference): the (at most) k points within `bound`
+/// nearest to p, nearest first, written to best[0, count); returns count.
+///
+/// Why it is shaped this way, measured by `bench kdtree` and perf
+/// (docs/photon_mapping.md): with k = 50 a query looks at about 400
+/// points, and the time went to branch mispredictions in the candidate
+/// bookkeeping and to cache misses on the descent, not to the distances.
+/// Hence: the best k kept as a sorted array (insertion from the back, so
+/// the answer needs no final sort; a heap plus a sort cost more at this
+/// k), a bucket's distances computed first and filtered without branches,
+/// an explicit stack instead of recursion, and the two children
+/// prefetched while the parent is examined. The state lives in locals, not
+/// in members, so that the compiler keeps the bound in a register.
+size_t knn_search(const KdTree& tree, const Vec3& p, size_t k, double bound, Candidate* best) {
+    const Vec3* points = tree.points.data();
+    size_t count = 0;  // how many of best are filled
+
+    // Keeps a point within the bound: inserted into the sorted best from
+    // the back (the farthest drops out once k are held); the bound then
+    // becomes the k-th distance.
+    auto consider = [&](double dist2, uint32_t at) {
+        if (dist2 > bound) return;
+        size_t i = count < k ? count++ : k - 1;
+        for (; i > 0 && best[i - 1].dist2 > dist2; --i) best[i] = best[i - 1];
+        best[i] = {dist2, at};
+        if (count == k) bound = best[k - 1].dist2;
+    };
+    // Every point of the bucket [lo, hi), at most kScanBelow of them.
+    auto scan_bucket = [&](uint32_t lo, uint32_t hi) {
+        double dist2[kScanBelow];
+        uint32_t inside[kScanBelow];
+        const uint32_t n = hi - lo;
+        for (uint32_t j = 0; j < n; ++j) dist2[j] = (points[lo + j] - p).norm2();
+        // Most points of a bucket lie beyond the bound: keep the others by
+        // arithmetic, not by a branch that the processor mispredicts.
+        uint32_t m = 0;
+        for (uint32_t j = 0; j < n; ++j) {
+            inside[m] = j;
+            m += dist2[j] <= bound;
+        }
+        for (uint32_t s = 0; s < m; ++s) consider(dist2[inside[s]], lo + inside[s]);
+    };
+
+    PendingCell stack[64];  // at most one entry per level, and a level per bit of a 32-bit size
+    int top = 0;
+    // The cell being descended, in locals (registers): its range, squared
+    // distance from p and per-axis offsets.
+    uint32_t lo = 0, hi = uint32_t(tree.size());
+    double cell_dist2 = 0, offset[3] = {0, 0, 0};
+    for (;;) {
+        // Descend to the bucket that holds p, leaving the far child of
+        // every node on the stack.
+        while (hi - lo > kScanBelow) {
+            const uint32_t mid = lo + (hi - lo) / 2;
+            // The next node is one of the two children's middles: fetch both
+            // while this one is examined (a miss costs more than the
+            // distance work of a whole bucket).
+            __builtin_prefetch(&points[lo + (mid - lo) / 2]);
+            __builtin_prefetch(&points[mid + 1 + (hi - mid - 1) / 2]);
+            const int axis = tree.axis[mid];
+            const double delta = p[axis] - points[mid][axis];
+            PendingCell& far = stack[top++];
+            far.node = mid;
+            far.dist2 = cell_dist2 - offset[axis] * offset[axis] + delta * delta;
+            far.offset[0] = offset[0];
+            far.offset[1] = offset[1];
+            far.offset[2] = offset[2];
+            far.offset[axis] = delta;
+            if (delta <= 0) {
+                far.lo = mid + 1;
+                far.hi = hi;
+                hi = mid;
+            } else {
+                far.lo = lo;
+                far.hi = mid;
+                lo = mid + 1;
+            }
+        }
+        scan_bucket(lo, hi);
+        // Back up to the nearest pending cell that can still hold a better
+        // point. Its node point lies on its boundary, so it is no nearer
+        // than the cell: both are skipped together.
+        const PendingCell* next = nullptr;
+        while (top > 0 && !next) {
+            const PendingCell& pending = stack[--top];
+            if (pending.dist2 <= bound) next = &pending;
+        }
+        if (!next) return count;
+        consider((points[next->node] - p).norm2(), next->node);
+        lo = next->lo;
+        hi = next->hi;
+        cell_dist2 = next->dist2;
+        offset[0] = next->offset[0];
+        offset[1] = next->offset[1];
+        offset[2] = next->offset[2];
+    }
+}
 
 void radius_visit(const KdTree& tree, const Vec3& p, double r2, size_t lo, size_t hi, std::vector<Neighbor>& out) {
     while (lo < hi) {
@@ -173,11 +227,12 @@ KdTree build_kdtree(const std::vector<Vec3>& points) {
 void k_nearest(const KdTree& tree, const Vec3& p, int k, double max_dist2, std::vector<Neighbor>& out) {
     out.clear();
     if (k <= 0 || tree.empty() || max_dist2 < 0) return;
-    KnnSearch search{tree, p, size_t(k), max_dist2, out};
-    double offset[3] = {0, 0, 0};
-    search.visit(0, tree.size(), 0.0, offset);
-    // Fewer than k found leaves no heap: a plain sort serves both cases.
-    std::sort(out.begin(), out.end(), KnnSearch::farther);
+    // Reused across queries on this thread: no allocation per query.
+    thread_local std::vector<Candidate> best;
+    const size_t kept = std::min(size_t(k), tree.size());
+    if (best.size() < kept) best.resize(kept);
+    const size_t found = knn_search(tree, p, kept, max_dist2, best.data());
+    for (size_t i = 0; i < found; ++i) out.push_back({tree.ids[best[i].at], best[i].dist2});
 }
 
 }  // namespace reference

@@ -22,9 +22,9 @@
 // Queries (reference only; they read the layout above, so they work on a
 // student's tree too):
 //   k_nearest      the k closest points within a maximum distance, sorted
-//                  nearest first (a bounded max-heap; a subtree is skipped
-//                  when its splitting plane lies farther than the current
-//                  k-th distance)
+//                  nearest first (the best k found so far kept sorted; a
+//                  subtree is skipped when its cell lies farther than the
+//                  current k-th distance)
 //   within_radius  every point within a fixed distance (SPPM's query)
 // Distances are squared Euclidean; a point at exactly the maximum distance
 // is found. Ties at equal distance may be broken either way.
