@@ -126,10 +126,21 @@ inline constexpr SobolDimension1ReversedBytes kSobolDimension1ReversedBytes{};
 inline uint32_t scrambled_sobol_dimension0(uint64_t a, uint32_t seed) {
     return reverse_bits_32(laine_karras(uint32_t(a), seed));
 }
-inline uint32_t scrambled_sobol_dimension1(uint64_t a, uint32_t seed) {
+/// The first 32 digits of Sobol dimension 1 of index a, in reverse order
+/// (the first digit in bit 0). Linear over GF(2): the value of a ^ b is the
+/// XOR of the values of a and b, so a sampler can keep the part of a fixed
+/// prefix of the index and add the rest.
+inline uint32_t sobol_dimension1_reversed(uint64_t a) {
     uint32_t reversed = 0;
     for (size_t k = 0; a != 0; ++k, a >>= 8) reversed ^= kSobolDimension1ReversedBytes.table[k][a & 0xFF];
+    return reversed;
+}
+/// owen_scramble of Sobol dimension 1 given sobol_dimension1_reversed of the index.
+inline uint32_t scrambled_sobol_dimension1_from_reversed(uint32_t reversed, uint32_t seed) {
     return reverse_bits_32(laine_karras(reversed, seed));
+}
+inline uint32_t scrambled_sobol_dimension1(uint64_t a, uint32_t seed) {
+    return scrambled_sobol_dimension1_from_reversed(sobol_dimension1_reversed(a), seed);
 }
 
 /// A 32-bit binary fraction as a double in [0, 1).

@@ -28,12 +28,27 @@ inline double sqr(double v) { return v * v; }
 /// sqrt that returns 0 for tiny negative arguments produced by rounding.
 inline double safe_sqrt(double v) { return std::sqrt(v > 0 ? v : 0.0); }
 
-/// The next representable double towards +infinity / -infinity.
+/// The next representable double towards +infinity / -infinity: what
+/// std::nextafter(v, +-infinity) returns, by stepping the bit pattern
+/// (pbrt-v3 section 3.9.1) inline, since nextafter is a library call on
+/// every spawned ray.
 inline double next_double_up(double v) {
-    return std::nextafter(v, std::numeric_limits<double>::infinity());
+    if (!(v < std::numeric_limits<double>::infinity())) return v;  // +inf, NaN
+    if (v == 0.0) v = 0.0;  // -0 steps up like +0
+    uint64_t bits;
+    std::memcpy(&bits, &v, sizeof v);
+    bits = v >= 0 ? bits + 1 : bits - 1;
+    std::memcpy(&v, &bits, sizeof v);
+    return v;
 }
 inline double next_double_down(double v) {
-    return std::nextafter(v, -std::numeric_limits<double>::infinity());
+    if (!(v > -std::numeric_limits<double>::infinity())) return v;  // -inf, NaN
+    if (v == 0.0) v = -0.0;  // +0 steps down like -0
+    uint64_t bits;
+    std::memcpy(&bits, &v, sizeof v);
+    bits = v > 0 ? bits - 1 : bits + 1;
+    std::memcpy(&v, &bits, sizeof v);
+    return v;
 }
 
 }  // namespace pt

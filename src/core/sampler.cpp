@@ -200,6 +200,8 @@ PixelSample Sampler::start(uint32_t x, uint32_t y, uint64_t index) const {
         for (uint64_t v = y % t.scale3, k = 0; k < uint64_t(t.exponent3); ++k, v /= 3) b = b * 3 + v % 3;
         const uint64_t tile = t.scale2 * t.scale3;
         s.global_index = (a * t.inverse2 + b * t.inverse3) % tile + index * tile;
+    } else if (settings_.kind == SamplerKind::zsobol) {
+        s.global_index = (uint64_t(morton_code(x, y)) << t.sample_bits) | index;
     } else if (settings_.kind == SamplerKind::sobol) {
         // Index bits 0..m-1 mirror x; bits 2m.. are the sample index; bits
         // m..2m-1 are solved so that dimension 1's first m digits spell y.
@@ -239,6 +241,12 @@ uint32_t Sampler::sobol_pixel_fraction(const PixelSample& s, int axis) const {
 
 namespace {
 
+/// The index of one of the 24 permutations for the base-4 digit below
+/// `prefix` (the digits above it with a marker bit on top): one mix.
+inline uint32_t base4_permutation_choice(uint64_t key, uint64_t prefix) {
+    return uint32_t((uint32_t(mix_bits(key ^ (prefix * 0x9E3779B97F4A7C15ull))) * uint64_t(24)) >> 32);
+}
+
 /// zsobol: the digits at shifts from `from` down to `to` (steps of 2) of
 /// the nested permutation of `code` (`bits` long) under `key`. From the
 /// first digit down, each base-4 digit is permuted by one of the 24
@@ -252,37 +260,76 @@ uint64_t permute_base4_digits(uint64_t code, int bits, int from, int to, uint64_
     for (int shift = from; shift >= to; shift -= 2) {
         uint64_t digit = (code >> shift) & 3;
         uint64_t prefix = (code >> (shift + 2)) | (uint64_t(1) << (bits - shift - 2));
-        uint64_t h = mix_bits(key ^ (prefix * 0x9E3779B97F4A7C15ull));
-        const auto& p = base4.table[(uint32_t(h) * uint64_t(24)) >> 32];
-        out |= uint64_t(p[digit]) << shift;
+        out |= uint64_t(base4.table[base4_permutation_choice(key, prefix)][digit]) << shift;
     }
     return out;
 }
 
-/// zsobol: the permuted digits of one pixel's Morton code per dimension.
-/// They depend on the pixel and the dimension only, and the samples of a
-/// pixel are rendered one after the other on one thread, so each thread
-/// keeps those of its current pixel: a 512x512 render at 16 spp then mixes
-/// 2 sample digits per draw instead of all 11 (the values are the same).
+/// zsobol: what one pixel's draws share, per dimension. The nested
+/// permutation of the pixel's Morton digits depends on the pixel and the
+/// dimension only, and so do the permutations of the first two base-4
+/// sample digits (the first one's hash sees the pixel's digits, the second
+/// one's those and one of 4 first digits); the samples of a pixel are
+/// rendered one after the other on one thread, so each thread keeps those
+/// of its current pixel, with the permuted sample digits of every sample
+/// when there are at most two (up to 32 spp): a draw then mixes no digit
+/// (but the lone base-2 digit of 2, 8 or 32 spp) instead of 11 (512x512),
+/// and the values are the same. Sobol dimension 1 is linear in the index,
+/// so the pixel's part of it is kept too.
 struct ZSobolPixelCache {
     uint64_t sampler_id = 0;  ///< 0: empty
     uint32_t x = 0, y = 0;
-    std::array<uint64_t, kCachedKeys / 64> valid{};  ///< bit d: digits[d] is set
-    std::array<uint64_t, kCachedKeys> digits{};
+    std::array<uint64_t, kCachedKeys / 64> valid{};  ///< bit d: entry d is set
+    struct Entry {
+        uint64_t digits;          ///< the pixel's permuted digits (shifts morton_bits + sample_bits - 2 .. sample_bits)
+        uint32_t reversed_dim1;   ///< sobol_dimension1_reversed(digits)
+        std::array<uint8_t, 16> low;  ///< up to two sample digits: the permuted ones, by the sample's
+    };
+    std::array<Entry, kCachedKeys> entries{};
 };
 thread_local ZSobolPixelCache zsobol_pixel_cache;
 
+/// Sample digits (base 4, above a lone base-2 digit) that the cache permutes in advance.
+constexpr int kCachedSampleLevels = 2;
+
+/// Fills entry `dimension` of the cache for the pixel of Morton code
+/// `pixel_code` (kept out of line: it runs once per pixel and dimension).
+[[gnu::noinline]] void fill_zsobol_entry(ZSobolPixelCache::Entry& e, uint64_t pixel_code, int morton_bits,
+                                        int sample_bits, int lone, uint64_t key, const Base4Permutations& base4) {
+    const int bits = morton_bits + sample_bits;
+    const uint64_t code = pixel_code << sample_bits;
+    e.digits = permute_base4_digits(code, bits, bits - 2, sample_bits, key, base4);
+    e.reversed_dim1 = sobol_dimension1_reversed(e.digits);
+    const int levels = (sample_bits - lone) / 2;
+    if (levels > kCachedSampleLevels) return;
+    // The sample digits above the lone one, j = 4 a + b (or j = b for one
+    // digit): digit a permuted as the pixel's digits choose (one mix), b as
+    // those and a choose (one mix per a): permute_base4_digits, its prefixes
+    // shared.
+    e.low[0] = 0;
+    if (levels == 0) return;
+    const uint64_t pixel = code >> sample_bits;
+    const auto& top = base4.table[base4_permutation_choice(key, pixel | (uint64_t(1) << morton_bits))];
+    if (levels == 1) {
+        for (int a = 0; a < 4; ++a) e.low[size_t(a)] = top[size_t(a)];
+        return;
+    }
+    for (uint64_t a = 0; a < 4; ++a) {
+        const auto& below = base4.table[base4_permutation_choice(key, ((pixel << 2) | a) | (uint64_t(1) << (morton_bits + 2)))];
+        for (uint64_t b = 0; b < 4; ++b) e.low[size_t(4 * a + b)] = uint8_t((top[a] << 2) | below[b]);
+    }
+}
+
 }  // namespace
 
-uint64_t Sampler::zsobol_index(const PixelSample& s, uint32_t dimension) const {
+uint64_t Sampler::zsobol_index(const PixelSample& s, uint32_t dimension, uint32_t* reversed_dim1) const {
     const Tables& t = *tables_;
     const int bits = t.morton_bits + t.sample_bits;
-    const uint64_t code = (uint64_t(morton_code(s.x, s.y)) << t.sample_bits) | s.index;
+    const uint64_t code = s.global_index;  // start(): the Morton code, then the sample index
     const int lone = bits & 1;  // an odd count leaves one base-2 digit at the bottom
-    uint64_t out = 0;
+    uint64_t out = 0, pixel_part = 0;
+    uint32_t reversed = 0;
     if (dimension < kCachedKeys) {
-        // The pixel's digits (shifts bits - 2 .. sample_bits: morton_bits is
-        // even, so the digits split there), from the cache.
         ZSobolPixelCache& cache = zsobol_pixel_cache;
         if (cache.sampler_id != id_ || cache.x != s.x || cache.y != s.y) {
             cache.sampler_id = id_, cache.x = s.x, cache.y = s.y;
@@ -290,18 +337,29 @@ uint64_t Sampler::zsobol_index(const PixelSample& s, uint32_t dimension) const {
         }
         uint64_t& valid = cache.valid[dimension / 64];
         const uint64_t bit = uint64_t(1) << (dimension % 64);
+        ZSobolPixelCache::Entry& e = cache.entries[dimension];
+        const uint64_t key = t.index_keys[dimension];
         if (!(valid & bit)) {
-            cache.digits[dimension] =
-                permute_base4_digits(code, bits, bits - 2, t.sample_bits, t.index_keys[dimension], t.base4);
+            fill_zsobol_entry(e, code >> t.sample_bits, t.morton_bits, t.sample_bits, lone, key, t.base4);
             valid |= bit;
         }
-        out = cache.digits[dimension] |
-              permute_base4_digits(code, bits, t.sample_bits - 2, lone, t.index_keys[dimension], t.base4);
+        out = pixel_part = e.digits;
+        reversed = e.reversed_dim1;
+        const uint64_t sample_mask = (uint64_t(1) << t.sample_bits) - 1;
+        if ((t.sample_bits - lone) / 2 <= kCachedSampleLevels)
+            out |= uint64_t(e.low[(code & sample_mask) >> lone]) << lone;
+        else
+            out |= permute_base4_digits(code, bits, t.sample_bits - 2, lone, key, t.base4);
     } else {
         out = permute_base4_digits(code, bits, bits - 2, lone, zsobol_key(dimension, 0), t.base4);
     }
-    const uint64_t key = dimension < kCachedKeys ? t.index_keys[dimension] : zsobol_key(dimension, 0);
-    if (lone) out |= (code & 1) ^ (mix_bits(key ^ ((code >> 1) * 0xD1B54A32D192ED03ull)) & 1);
+    if (lone) {
+        const uint64_t key = dimension < kCachedKeys ? t.index_keys[dimension] : zsobol_key(dimension, 0);
+        out |= (code & 1) ^ (mix_bits(key ^ ((code >> 1) * 0xD1B54A32D192ED03ull)) & 1);
+    }
+    // Linearity: the pixel's part from the cache, the rest (all of it past
+    // the cached dimensions) from the tables.
+    if (reversed_dim1) *reversed_dim1 = reversed ^ sobol_dimension1_reversed(out ^ pixel_part);
     return out;
 }
 
@@ -353,9 +411,13 @@ Vec2 Sampler::get_2d(const PixelSample& s, uint32_t dimension) const {
             uint32_t index = owen_scramble(uint32_t(s.index), uint32_t(key >> 32) ^ 0x9E3779B9u);
             return padded_sobol_2d(index, hash_values(key));
         }
-        case SamplerKind::zsobol:
-            return padded_sobol_2d(zsobol_index(s, dimension),
-                                   dimension < kCachedKeys ? tables_->scramble_keys_2d[dimension] : zsobol_key(dimension, 2));
+        case SamplerKind::zsobol: {
+            uint32_t reversed_dim1 = 0;
+            const uint64_t index = zsobol_index(s, dimension, &reversed_dim1);
+            const uint64_t key = dimension < kCachedKeys ? tables_->scramble_keys_2d[dimension] : zsobol_key(dimension, 2);
+            return {binary_fraction(scrambled_sobol_dimension0(index, uint32_t(key))),
+                    binary_fraction(scrambled_sobol_dimension1_from_reversed(reversed_dim1, uint32_t(key >> 32)))};
+        }
     }
     uint64_t h = hash_values(s.pixel_key, s.index, dimension);
     return {uniform_from_hash(h), double(uint32_t(h)) * 0x1p-32};

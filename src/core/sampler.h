@@ -92,7 +92,8 @@ struct PixelSample {
     uint32_t x = 0, y = 0;
     uint64_t index = 0;      ///< sample index within the pixel
     uint64_t pixel_key = 0;  ///< hash of (seed, pixel): the per-pixel randomisation
-    uint64_t global_index = 0;  ///< halton, sobol: index of the point in the global sequence
+    uint64_t global_index = 0;  ///< halton, sobol: index of the point in the global sequence;
+                                ///< zsobol: the pixel's Morton code, then the sample index's bits
 };
 
 class Sampler {
@@ -124,7 +125,10 @@ private:
     struct Tables;
     double halton_value(const PixelSample& sample, uint32_t dimension) const;
     uint32_t sobol_pixel_fraction(const PixelSample& sample, int axis) const;
-    uint64_t zsobol_index(const PixelSample& sample, uint32_t dimension) const;
+    /// zsobol: the permuted index of the sample in dimension `dimension`;
+    /// `reversed_dim1`, when not null, receives the first 32 digits of Sobol
+    /// dimension 1 of that index in reverse order (what its scramble needs).
+    uint64_t zsobol_index(const PixelSample& sample, uint32_t dimension, uint32_t* reversed_dim1 = nullptr) const;
     /// zsobol's hash key of a dimension: 0 the index permutation, 1 and 2 the scrambles of 1D and 2D draws.
     uint64_t zsobol_key(uint32_t dimension, int purpose) const;
     Vec2 padded_sobol_2d(uint64_t index, uint64_t key) const;

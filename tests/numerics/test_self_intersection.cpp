@@ -5,9 +5,12 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <cstring>
+#include <limits>
 #include <memory>
 
 #include "core/frame.h"
+#include "core/math.h"
 #include "core/rng.h"
 #include "core/sampling.h"
 #include "stages/render_context.h"
@@ -136,4 +139,23 @@ TEST_CASE("rays leaving a sphere at any scale: outward never re-hits, inward rea
             CHECK(missed_far_side == 0);
         }
     }
+}
+
+TEST_CASE("next_double_up and next_double_down step exactly as std::nextafter") {
+    // spawn_ray's rounding away from the surface relies on them; they step
+    // the bit pattern inline instead of calling the library.
+    const double inf = std::numeric_limits<double>::infinity();
+    const double values[] = {0.0, -0.0, 1.0, -1.0, 0.1, -0.1, 1e-310, -1e-310,
+                             std::numeric_limits<double>::denorm_min(), -std::numeric_limits<double>::denorm_min(),
+                             std::numeric_limits<double>::min(), std::numeric_limits<double>::max(),
+                             -std::numeric_limits<double>::max(), 123456.789, -9.87e30, inf, -inf};
+    for (double v : values) {
+        CAPTURE(v);
+        const double up = next_double_up(v), down = next_double_down(v);
+        const double want_up = std::nextafter(v, inf), want_down = std::nextafter(v, -inf);
+        CHECK(std::memcmp(&up, &want_up, sizeof up) == 0);
+        CHECK(std::memcmp(&down, &want_down, sizeof down) == 0);
+    }
+    CHECK(std::isnan(next_double_up(std::nan(""))));
+    CHECK(std::isnan(next_double_down(std::nan(""))));
 }

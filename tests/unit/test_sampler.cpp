@@ -195,6 +195,50 @@ TEST_CASE("every sampler is a function of (seed, pixel, sample, dimension): any 
     }
 }
 
+TEST_CASE("zsobol: a pixel's cached digits give the values of a fresh computation, at every spp") {
+    // zsobol keeps per thread what a pixel's draws share (its permuted Morton
+    // digits, the first two sample digits' permutations, its part of Sobol
+    // dimension 1). Drawing from two samplers in turn empties that cache
+    // before every draw of `fresh`; `cached` draws a pixel's samples in a row.
+    for (int spp : {1, 2, 4, 8, 16, 32, 64, 256}) {
+        Sampler fresh(settings_of(SamplerKind::zsobol, spp, 64, 48), kReference),
+            other(settings_of(SamplerKind::zsobol, spp, 64, 48), kReference),
+            cached(settings_of(SamplerKind::zsobol, spp, 64, 48), kReference);
+        std::vector<double> want;
+        for (uint32_t y : {0u, 17u}) {
+            for (uint32_t x : {0u, 5u, 63u}) {
+                for (uint64_t i = 0; i < uint64_t(spp); ++i) {
+                    PixelSample s = fresh.start(x, y, i), o = other.start(x, y, i);
+                    for (uint32_t dim : {0u, 2u, 5u, 9u, 127u, 128u, 200u}) {
+                        want.push_back(fresh.get_1d(s, dim));
+                        (void)other.get_1d(o, dim);
+                        Vec2 u = fresh.get_2d(s, dim);
+                        (void)other.get_2d(o, dim);
+                        want.push_back(u.x);
+                        want.push_back(u.y);
+                    }
+                }
+            }
+        }
+        size_t k = 0;
+        for (uint32_t y : {0u, 17u}) {
+            for (uint32_t x : {0u, 5u, 63u}) {
+                for (uint64_t i = 0; i < uint64_t(spp); ++i) {
+                    PixelSample s = cached.start(x, y, i);
+                    for (uint32_t dim : {0u, 2u, 5u, 9u, 127u, 128u, 200u}) {
+                        CAPTURE(spp);
+                        CAPTURE(dim);
+                        CHECK(cached.get_1d(s, dim) == want[k++]);
+                        Vec2 u = cached.get_2d(s, dim);
+                        CHECK(u.x == want[k++]);
+                        CHECK(u.y == want[k++]);
+                    }
+                }
+            }
+        }
+    }
+}
+
 TEST_CASE("Rng with a sampler: dimensions in order, seek never goes back, integers stay PCG32") {
     Sampler sampler(settings_of(SamplerKind::zsobol, 16), kReference);
     Rng rng(sampler, 2, 3, 3 * 16 + 2, 5);
