@@ -21,7 +21,7 @@ enum Tag : uint8_t {
     kThrewNotImplemented = 200,  ///< u32 part, string message
     kThrew = 201,                ///< string message
     kImage = 202,                ///< u32 width, u32 height, floats, u32 sample counts
-    kMeasurement = 203,          ///< f64 seconds, nodes, tests, u64 hits
+    kTiming = 204,               ///< u64 answered rays, each: bool hit, f64 t, u32 primitive if hit
     kEnd = 255,
 };
 
@@ -35,6 +35,7 @@ std::atomic<int> g_paused{0};         // renders and timings: log nothing
 thread_local int g_depth = 0;         // > 0: inside a logged (or stand-in) call
 std::string g_replay;                 // replay mode: the log
 size_t g_at = 0;                      // replay mode: the read position
+double g_runner_cpu = NAN;            // replay mode: the runner's CPU seconds
 
 struct Depth {
     Depth() { ++g_depth; }
@@ -72,6 +73,15 @@ void put(const BSDFSample& s) { put(s.wi), put(s.f), put(s.pdf), put(s.is_delta)
 void put(const PixelResult& p) { put(p.radiance), put(p.samples); }
 void put(const DistanceSample& d) { put(d.t), put(d.pdf), put(d.scattered); }
 void put(const EmittedPhoton& e) { put(e.ray), put(e.flux), put(e.valid); }
+void put(const PathVertex& v) {
+    put(uint8_t(v.kind)), put(v.p), put(v.ng), put(v.ns), put(v.w), put(v.beta), put(v.pdf_fwd), put(v.pdf_rev),
+        put(v.delta);
+}
+void put(const Connection& c) {
+    put(c.L), put(c.camera_vertex.has_value());
+    if (c.camera_vertex) put(*c.camera_vertex);
+    put(c.film);
+}
 void put(const KdTree& t) {
     put(uint64_t(t.points.size())), put(uint64_t(t.ids.size())), put(uint64_t(t.axis.size()));
     put_bytes(t.points.data(), t.points.size() * sizeof(Vec3));
@@ -127,6 +137,26 @@ void get(BSDFSample& s) { get(s.wi), get(s.f), get(s.pdf), get(s.is_delta), get(
 void get(PixelResult& p) { get(p.radiance), get(p.samples); }
 void get(DistanceSample& d) { get(d.t), get(d.pdf), get(d.scattered); }
 void get(EmittedPhoton& e) { get(e.ray), get(e.flux), get(e.valid); }
+// A vertex as the log has it: what a check reads of it (no hit record, no
+// BSDF: the grader finds those itself from the positions).
+void get(PathVertex& v) {
+    const uint8_t kind = get_raw<uint8_t>();
+    if (kind > uint8_t(VertexKind::escaped)) bad("a path vertex of no known kind");
+    v.kind = VertexKind(kind);
+    get(v.p), get(v.ng), get(v.ns), get(v.w), get(v.beta), get(v.pdf_fwd), get(v.pdf_rev), get(v.delta);
+}
+void get(Connection& c) {
+    get(c.L);
+    bool has = false;
+    get(has);
+    c.camera_vertex.reset();
+    if (has) {
+        PathVertex z0;
+        get(z0);
+        c.camera_vertex = z0;
+    }
+    get(c.film);
+}
 // A kd-tree of at most 2^24 points (the checks build far smaller ones);
 // kdtree_is_valid judges the rest, sizes included.
 constexpr uint64_t kMaxTreePoints = uint64_t(1) << 24;
@@ -307,6 +337,62 @@ void replay_k_nearest(const KdTree& tree, const Vec3&, int, double, std::vector<
     }
 }
 
+// random_walk appends to `path` (and sets pdf_rev of the vertex it starts
+// from): the log holds the count it returned and the whole path after the
+// call, at most max_vertices + 1 longer than before.
+constexpr int kRandomWalkId = 32;
+int record_random_walk(const RenderContext& context, const Ray& ray, const Color& beta, double pdf_dir,
+                       int max_vertices, Transport mode, Rng& rng, std::vector<PathVertex>& path) {
+    Depth d;
+    if (g_depth > 1 || g_mode != CallMode::record || g_paused != 0)
+        return g_inner.bdpt.random_walk(context, ray, beta, pdf_dir, max_vertices, mode, rng, path);
+    int added = 0;
+    try {
+        added = g_inner.bdpt.random_walk(context, ray, beta, pdf_dir, max_vertices, mode, rng, path);
+    } catch (...) {
+        log_exception();
+        throw;
+    }
+    std::lock_guard<std::mutex> lock(g_log_mutex);
+    put(uint8_t(kRandomWalkId)), put(added), put(uint64_t(path.size()));
+    for (const PathVertex& v : path)
+        put(v);
+    return added;
+}
+int stand_in_random_walk(const RenderContext& context, const Ray& ray, const Color& beta, double pdf_dir,
+                         int max_vertices, Transport mode, Rng& rng, std::vector<PathVertex>& path) {
+    Depth d;
+    try {
+        return g_inner.bdpt.random_walk(context, ray, beta, pdf_dir, max_vertices, mode, rng, path);
+    } catch (...) {
+        return 0;
+    }
+}
+int replay_random_walk(const RenderContext&, const Ray&, const Color&, double, int max_vertices, Transport,
+                       Rng&, std::vector<PathVertex>& path) {
+    begin_record(kRandomWalkId, "random_walk");
+    int added = 0;
+    uint64_t n = 0;
+    get(added), get(n);
+    if (n > path.size() + uint64_t(std::max(max_vertices, 0)) + 1 || n > kMaxNeighbors)
+        bad("random_walk made a longer path than max_vertices allows");
+    // Vertices the caller made keep their hit and BSDF; their figures are the log's.
+    const size_t before = path.size();
+    path.resize(size_t(n));
+    for (size_t i = 0; i < path.size(); ++i) {
+        PathVertex v;
+        get(v);
+        if (i < before) {
+            PathVertex& kept = path[i];
+            kept.kind = v.kind, kept.p = v.p, kept.ng = v.ng, kept.ns = v.ns, kept.w = v.w;
+            kept.beta = v.beta, kept.pdf_fwd = v.pdf_fwd, kept.pdf_rev = v.pdf_rev, kept.delta = v.delta;
+        } else {
+            path[i] = v;
+        }
+    }
+    return added;
+}
+
 // construct_bvh reorders primitives[start, end) and returns a tree: the log
 // holds the new order as positions in the old one, and the tree in
 // preorder (1, box, start, end, left, right; 0 for no node).
@@ -459,6 +545,8 @@ PT_ACCESS(sample_distance, media.sample_distance)
 PT_ACCESS(hg_phase, media.hg_phase)
 PT_ACCESS(sample_hg, media.sample_hg)
 PT_ACCESS(in_scattered_radiance, media.in_scattered_radiance)
+PT_ACCESS(connect, bdpt.connect)
+PT_ACCESS(mis_weight, bdpt.mis_weight)
 #undef PT_ACCESS
 
 // The slots by stage_mix's names; the ids are the log's tags.
@@ -519,6 +607,12 @@ const SlotEntry kSlots[] = {
     PT_SLOT(29, media, hg_phase),
     PT_SLOT(30, media, sample_hg),
     PT_SLOT(31, media, in_scattered_radiance),
+    {"bdpt.random_walk",
+     [](Stages& s, int v) {
+         s.bdpt.random_walk = v == 0 ? record_random_walk : v == 1 ? replay_random_walk : stand_in_random_walk;
+     }},
+    PT_SLOT(33, bdpt, connect),
+    PT_SLOT(34, bdpt, mis_weight),
 };
 
 #undef PT_SLOT
@@ -576,6 +670,7 @@ Stages start_replay(std::string log) {
 
 void stop_replay() {
     g_mode = CallMode::direct;
+    g_runner_cpu = NAN;
     g_replay.clear();
     g_at = 0;
 }
@@ -614,33 +709,48 @@ RenderResult student_render(const Scene& scene, const ImageCase& c, const Stages
     return r;
 }
 
-AcceleratorMeasurement student_measurement(const Accelerator& accelerator,
-                                           const std::vector<Ray>& rays, int repeats) {
-    if (g_mode == CallMode::direct) return measure_accelerator(accelerator, rays, repeats);
+TraversalTiming student_traversal_timing(const BVHTree& tree, BvhIntersectFn traverse,
+                                         const std::vector<Ray>& rays, double max_seconds) {
+    if (g_mode == CallMode::direct) return time_traversal(tree, traverse, rays, max_seconds);
     if (g_mode == CallMode::record) {
-        AcceleratorMeasurement m;
+        // The runner's own clock is worth nothing to the grader: only the answers are logged.
+        TraversalTiming m;
         try {
             Pause p;
-            m = measure_accelerator(accelerator, rays, repeats);
+            m = time_traversal(tree, traverse, rays, max_seconds);
         } catch (...) {
             log_exception();
             throw;
         }
         std::lock_guard<std::mutex> lock(g_log_mutex);
-        put(uint8_t(kMeasurement)), put(m.seconds), put(m.nodes_per_ray), put(m.tests_per_ray),
-            put(uint64_t(m.hits));
+        put(uint8_t(kTiming)), put(uint64_t(m.answers.size()));
+        for (const std::optional<Hit>& h : m.answers) {
+            put(h.has_value());
+            if (h) put(h->t), put(h->primitive);
+        }
         return m;
     }
-    begin_record(kMeasurement, "a timing");
-    AcceleratorMeasurement m;
-    uint64_t hits = 0;
-    get(m.seconds), get(m.nodes_per_ray), get(m.tests_per_ray), get(hits);
-    for (double v : {m.seconds, m.nodes_per_ray, m.tests_per_ray})
-        if (!std::isfinite(v) || v < 0) bad("a timing that is negative, NaN or infinite");
-    if (hits > rays.size()) bad("more hits than rays");
-    m.hits = size_t(hits);
+    begin_record(kTiming, "a timed traversal");
+    uint64_t n = 0;
+    get(n);
+    if (n > rays.size()) bad("more answers than rays");
+    TraversalTiming m;
+    m.answers.resize(size_t(n));
+    for (std::optional<Hit>& h : m.answers) {
+        bool hit = false;
+        get(hit);
+        if (!hit) continue;
+        Hit x;
+        get(x.t), get(x.primitive);
+        h = x;
+    }
+    if (!(g_runner_cpu >= 0)) bad("the runner's CPU time is unknown");
+    m.seconds = g_runner_cpu;
+    m.whole_runner = true;
     return m;
 }
+
+void set_runner_cpu_seconds(double seconds) { g_runner_cpu = seconds; }
 
 std::string printable(const std::string& text, size_t limit) {
     std::string out;

@@ -31,7 +31,6 @@ TEST_CASE("recorded and replayed: the same verdicts and figures as in-process, e
     double direct_seconds = 0, replayed_seconds = 0;
     for (int part : graded_parts()) {
         for (const TaskSpec& spec : manifest(part).tasks) {
-            if (spec.check == "bvh_performance") continue;  // wall-clock figures differ run to run
             Timer timer;
             TaskResult direct = grade_task(spec, environment(reference_stages(), 1));
             direct_seconds += timer.seconds();
@@ -40,6 +39,12 @@ TEST_CASE("recorded and replayed: the same verdicts and figures as in-process, e
             replayed_seconds += timer.seconds();
             INFO(spec.id << ": " << replayed.message);
             CHECK(replayed.status == TaskStatus::pass);
+            if (spec.check == "bvh_performance") {
+                // Its times differ run to run (and replayed, they are the whole
+                // runner's); the grader's count on the student's tree does not.
+                CHECK(replayed.value == direct.value);
+                continue;
+            }
             CHECK(verdict(direct).dump() == verdict(replayed).dump());
         }
     }
@@ -114,6 +119,10 @@ TEST_CASE("the binaries: grade holds no student code; a runner no reference of w
         {"zero_bounce_radiance", "pt::reference::estimate_direct_lighting_hemisphere("},
         {"has_converged", "pt::reference::has_converged("},
         {"at_least_one_bounce_radiance", "pt::reference::at_least_one_bounce_radiance("},
+        {"random_walk", "pt::reference::random_walk("},
+        {"connect", "pt::reference::connect("},
+        {"mis_weight", "pt::reference::mis_weight("},
+        {"bdpt", "pt::reference::connect("},
         // engine helpers that would answer a task whole (scripts/weaken_reference.sh)
         {"estimate_direct_lighting_importance", "pt::sample_lights_mis("},
         {"estimate_direct_lighting_mis", "pt::sample_lights_mis("},
