@@ -120,4 +120,19 @@ TaskResult check_k_nearest(const TaskSpec& spec, const GradeEnvironment& env);
 /// Part 8, density_estimate: equation 1 for the three kernels; uniform photons.
 TaskResult check_density_estimate(const TaskSpec& spec, const GradeEnvironment& env);
 
+/// Part 7, random_walk: each vertex the first hit from the one before; its
+/// area densities both ways, beta and delta flag against the grader's own
+/// from the BSDFs at the hits; the next vertex's distribution in a cube
+/// against the integrated area density (chi-square) (bdpt_checks.cpp).
+TaskResult check_random_walk(const TaskSpec& spec, const GradeEnvironment& env);
+
+/// Part 7, connect: every strategy (s, t) of reference subpaths against the
+/// closed forms (G, emission, We), 0 for blocked edges and vertices that
+/// cannot be joined.
+TaskResult check_bdpt_connect(const TaskSpec& spec, const GradeEnvironment& env);
+
+/// Part 7, mis_weight: the weights of every strategy of random paths
+/// against brute force; they sum to 1 (both heuristics).
+TaskResult check_bdpt_mis_weight(const TaskSpec& spec, const GradeEnvironment& env);
+
 }  // namespace pt

@@ -141,11 +141,12 @@ ImageCase parse_image_case(const json& j, const std::string& where) {
     bool found = false;
     for (IntegratorKind k :
          {IntegratorKind::normals, IntegratorKind::depth, IntegratorKind::whitted,
-          IntegratorKind::direct, IntegratorKind::path, IntegratorKind::pm, IntegratorKind::volpath})
+          IntegratorKind::direct, IntegratorKind::path, IntegratorKind::pm, IntegratorKind::volpath,
+          IntegratorKind::bdpt})
         if (kind == to_string(k)) c.settings.integrator = k, found = true;
     if (!found)
         throw InputError(where +
-                         ".integrator: expected normals, depth, whitted, direct, path, pm or volpath");
+                         ".integrator: expected normals, depth, whitted, direct, path, pm, volpath or bdpt");
     c.settings.spp = positive_int(j, "spp", where);
     if (j.contains("width")) c.width = positive_int(j, "width", where);
     if (j.contains("height")) c.height = positive_int(j, "height", where);

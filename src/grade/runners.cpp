@@ -56,6 +56,10 @@ const std::vector<Runner>& runners() {
         {"hg_phase", {"media.hg_phase"}},
         {"sample_hg", {"media.sample_hg"}},
         {"in_scattered_radiance", {"media.in_scattered_radiance"}},
+        {"random_walk", {"bdpt.random_walk"}},
+        {"connect", {"bdpt.connect"}},
+        {"mis_weight", {"bdpt.mis_weight"}},
+        {"bdpt", {"bdpt.random_walk", "bdpt.connect", "bdpt.mis_weight"}},
     };
     return table;
 }

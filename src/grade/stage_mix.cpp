@@ -59,6 +59,10 @@ const Slot kSlots[] = {
     PT_FUNCTION_SLOT(media, hg_phase),
     PT_FUNCTION_SLOT(media, sample_hg),
     PT_FUNCTION_SLOT(media, in_scattered_radiance),
+    {"bdpt", Stage::bdpt, [](Stages& to, const Stages& from) { to.bdpt = from.bdpt; }},
+    PT_FUNCTION_SLOT(bdpt, random_walk),
+    PT_FUNCTION_SLOT(bdpt, connect),
+    PT_FUNCTION_SLOT(bdpt, mis_weight),
 };
 
 #undef PT_FUNCTION_SLOT

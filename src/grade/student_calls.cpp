@@ -73,6 +73,15 @@ void put(const BSDFSample& s) { put(s.wi), put(s.f), put(s.pdf), put(s.is_delta)
 void put(const PixelResult& p) { put(p.radiance), put(p.samples); }
 void put(const DistanceSample& d) { put(d.t), put(d.pdf), put(d.scattered); }
 void put(const EmittedPhoton& e) { put(e.ray), put(e.flux), put(e.valid); }
+void put(const PathVertex& v) {
+    put(uint8_t(v.kind)), put(v.p), put(v.ng), put(v.ns), put(v.w), put(v.beta), put(v.pdf_fwd), put(v.pdf_rev),
+        put(v.delta);
+}
+void put(const Connection& c) {
+    put(c.L), put(c.camera_vertex.has_value());
+    if (c.camera_vertex) put(*c.camera_vertex);
+    put(c.film);
+}
 void put(const KdTree& t) {
     put(uint64_t(t.points.size())), put(uint64_t(t.ids.size())), put(uint64_t(t.axis.size()));
     put_bytes(t.points.data(), t.points.size() * sizeof(Vec3));
@@ -128,6 +137,26 @@ void get(BSDFSample& s) { get(s.wi), get(s.f), get(s.pdf), get(s.is_delta), get(
 void get(PixelResult& p) { get(p.radiance), get(p.samples); }
 void get(DistanceSample& d) { get(d.t), get(d.pdf), get(d.scattered); }
 void get(EmittedPhoton& e) { get(e.ray), get(e.flux), get(e.valid); }
+// A vertex as the log has it: what a check reads of it (no hit record, no
+// BSDF: the grader finds those itself from the positions).
+void get(PathVertex& v) {
+    const uint8_t kind = get_raw<uint8_t>();
+    if (kind > uint8_t(VertexKind::escaped)) bad("a path vertex of no known kind");
+    v.kind = VertexKind(kind);
+    get(v.p), get(v.ng), get(v.ns), get(v.w), get(v.beta), get(v.pdf_fwd), get(v.pdf_rev), get(v.delta);
+}
+void get(Connection& c) {
+    get(c.L);
+    bool has = false;
+    get(has);
+    c.camera_vertex.reset();
+    if (has) {
+        PathVertex z0;
+        get(z0);
+        c.camera_vertex = z0;
+    }
+    get(c.film);
+}
 // A kd-tree of at most 2^24 points (the checks build far smaller ones);
 // kdtree_is_valid judges the rest, sizes included.
 constexpr uint64_t kMaxTreePoints = uint64_t(1) << 24;
@@ -308,6 +337,62 @@ void replay_k_nearest(const KdTree& tree, const Vec3&, int, double, std::vector<
     }
 }
 
+// random_walk appends to `path` (and sets pdf_rev of the vertex it starts
+// from): the log holds the count it returned and the whole path after the
+// call, at most max_vertices + 1 longer than before.
+constexpr int kRandomWalkId = 32;
+int record_random_walk(const RenderContext& context, const Ray& ray, const Color& beta, double pdf_dir,
+                       int max_vertices, Transport mode, Rng& rng, std::vector<PathVertex>& path) {
+    Depth d;
+    if (g_depth > 1 || g_mode != CallMode::record || g_paused != 0)
+        return g_inner.bdpt.random_walk(context, ray, beta, pdf_dir, max_vertices, mode, rng, path);
+    int added = 0;
+    try {
+        added = g_inner.bdpt.random_walk(context, ray, beta, pdf_dir, max_vertices, mode, rng, path);
+    } catch (...) {
+        log_exception();
+        throw;
+    }
+    std::lock_guard<std::mutex> lock(g_log_mutex);
+    put(uint8_t(kRandomWalkId)), put(added), put(uint64_t(path.size()));
+    for (const PathVertex& v : path)
+        put(v);
+    return added;
+}
+int stand_in_random_walk(const RenderContext& context, const Ray& ray, const Color& beta, double pdf_dir,
+                         int max_vertices, Transport mode, Rng& rng, std::vector<PathVertex>& path) {
+    Depth d;
+    try {
+        return g_inner.bdpt.random_walk(context, ray, beta, pdf_dir, max_vertices, mode, rng, path);
+    } catch (...) {
+        return 0;
+    }
+}
+int replay_random_walk(const RenderContext&, const Ray&, const Color&, double, int max_vertices, Transport,
+                       Rng&, std::vector<PathVertex>& path) {
+    begin_record(kRandomWalkId, "random_walk");
+    int added = 0;
+    uint64_t n = 0;
+    get(added), get(n);
+    if (n > path.size() + uint64_t(std::max(max_vertices, 0)) + 1 || n > kMaxNeighbors)
+        bad("random_walk made a longer path than max_vertices allows");
+    // Vertices the caller made keep their hit and BSDF; their figures are the log's.
+    const size_t before = path.size();
+    path.resize(size_t(n));
+    for (size_t i = 0; i < path.size(); ++i) {
+        PathVertex v;
+        get(v);
+        if (i < before) {
+            PathVertex& kept = path[i];
+            kept.kind = v.kind, kept.p = v.p, kept.ng = v.ng, kept.ns = v.ns, kept.w = v.w;
+            kept.beta = v.beta, kept.pdf_fwd = v.pdf_fwd, kept.pdf_rev = v.pdf_rev, kept.delta = v.delta;
+        } else {
+            path[i] = v;
+        }
+    }
+    return added;
+}
+
 // construct_bvh reorders primitives[start, end) and returns a tree: the log
 // holds the new order as positions in the old one, and the tree in
 // preorder (1, box, start, end, left, right; 0 for no node).
@@ -460,6 +545,8 @@ PT_ACCESS(sample_distance, media.sample_distance)
 PT_ACCESS(hg_phase, media.hg_phase)
 PT_ACCESS(sample_hg, media.sample_hg)
 PT_ACCESS(in_scattered_radiance, media.in_scattered_radiance)
+PT_ACCESS(connect, bdpt.connect)
+PT_ACCESS(mis_weight, bdpt.mis_weight)
 #undef PT_ACCESS
 
 // The slots by stage_mix's names; the ids are the log's tags.
@@ -520,6 +607,12 @@ const SlotEntry kSlots[] = {
     PT_SLOT(29, media, hg_phase),
     PT_SLOT(30, media, sample_hg),
     PT_SLOT(31, media, in_scattered_radiance),
+    {"bdpt.random_walk",
+     [](Stages& s, int v) {
+         s.bdpt.random_walk = v == 0 ? record_random_walk : v == 1 ? replay_random_walk : stand_in_random_walk;
+     }},
+    PT_SLOT(33, bdpt, connect),
+    PT_SLOT(34, bdpt, mis_weight),
 };
 
 #undef PT_SLOT

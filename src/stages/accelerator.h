@@ -16,6 +16,9 @@ namespace pt {
 
 struct Scene;
 
+/// Most rays Accelerator::intersect_packet takes at once (one bit each in a mask).
+constexpr int kPacketSize = 8;
+
 /// Figures an accelerator reports for tables and --stats.
 struct AcceleratorInfo {
     std::string name;        ///< "linear", "bvh-sah", ...
@@ -34,6 +37,15 @@ public:
     /// Whether any primitive is hit within [t_min, t_max] (shadow rays); may
     /// stop at the first hit found.
     virtual bool occluded(const Ray& ray) const = 0;
+    /// Closest hits of `count` (<= kPacketSize) rays traced together, e.g.
+    /// camera rays of neighbouring pixels: hits[i] is exactly intersect(rays[i]).
+    /// Here one ray at a time; the wide BVH shares one traversal among them
+    /// (a ray packet: Wald et al., "Interactive Rendering with Coherent Ray
+    /// Tracing", Eurographics 2001), which pays when the rays are coherent.
+    virtual void intersect_packet(const Ray* rays, int count, std::optional<Hit>* hits) const {
+        for (int i = 0; i < count; ++i)
+            hits[i] = intersect(rays[i]);
+    }
     virtual AcceleratorInfo info() const = 0;
 };
 

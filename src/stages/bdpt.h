@@ -112,8 +112,20 @@ double mis_weight(const MisVertex* light, int s, const MisVertex* camera, int t,
 /// stage.random_walk for up to max_depth + 1 vertices.
 std::vector<PathVertex> camera_subpath(const RenderContext& context, const BdptStage& stage,
                                        const Ray& ray, Rng& rng);
-/// A light subpath: a light picked by power, a ray from sample_Le, then
-/// stage.random_walk for up to max_depth vertices (empty without lights).
+/// The start of a light subpath: its light vertex y0 (a light picked by
+/// power, a point and a direction from sample_Le) and what random_walk
+/// continues with: the ray leaving y0, its weight beta = flux / pick and
+/// the solid-angle density of its direction.
+struct LightStart {
+    PathVertex y0;
+    Ray ray;
+    Color beta;
+    double pdf_dir = 0;
+};
+/// Nothing without lights or when sample_Le gives no light.
+std::optional<LightStart> light_start(const RenderContext& context, Rng& rng);
+/// A light subpath: light_start, then stage.random_walk for up to
+/// max_depth vertices (empty without lights).
 std::vector<PathVertex> light_subpath(const RenderContext& context, const BdptStage& stage, Rng& rng);
 
 /// The MIS weight of the strategy (s, t) whose Connection is `c`: fills in

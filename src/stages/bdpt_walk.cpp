@@ -103,16 +103,15 @@ std::vector<PathVertex> camera_subpath(const RenderContext& context, const BdptS
     return path;
 }
 
-std::vector<PathVertex> light_subpath(const RenderContext& context, const BdptStage& stage, Rng& rng) {
-    std::vector<PathVertex> path;
+std::optional<LightStart> light_start(const RenderContext& context, Rng& rng) {
     double pick = 0;
     const Light* light = context.lights.sample_by_power(rng.next_1d(), &pick);
-    if (!light || !(pick > 0)) return path;
+    if (!light || !(pick > 0)) return std::nullopt;
     const Vec2 u_pos = rng.next_2d(), u_dir = rng.next_2d();
     const LightEmission e = light->sample_Le(u_pos, u_dir);
-    if (!e.valid() || e.Le.is_black()) return path;
-    path.reserve(size_t(std::min(context.settings.max_depth, 16)) + 1);
-    PathVertex y0;
+    if (!e.valid() || e.Le.is_black()) return std::nullopt;
+    LightStart start;
+    PathVertex& y0 = start.y0;
     y0.kind = VertexKind::light;
     y0.light = light;
     y0.p = e.p;
@@ -127,14 +126,25 @@ std::vector<PathVertex> light_subpath(const RenderContext& context, const BdptSt
     // direction's (pbrt-v3 section 16.3.3); the others, the point's.
     y0.pdf_fwd = light->at_infinity() ? pick * e.pdf_dir : pick * e.pdf_pos;
     y0.beta = e.Le / y0.pdf_fwd;
-    path.push_back(y0);
-    const Color beta = e.flux() / pick;
-    stage.random_walk(context, e.ray(), beta, e.pdf_dir, context.settings.max_depth,
+    start.ray = e.ray();
+    start.beta = e.flux() / pick;
+    start.pdf_dir = e.pdf_dir;
+    return start;
+}
+
+std::vector<PathVertex> light_subpath(const RenderContext& context, const BdptStage& stage, Rng& rng) {
+    std::vector<PathVertex> path;
+    const std::optional<LightStart> start = light_start(context, rng);
+    if (!start) return path;
+    path.reserve(size_t(std::min(context.settings.max_depth, 16)) + 1);
+    path.push_back(start->y0);
+    const Light* light = start->y0.light;
+    stage.random_walk(context, start->ray, start->beta, start->pdf_dir, context.settings.max_depth,
                       Transport::importance, rng, path);
     // The vertex after a far light: the density of the disk its rays start on.
     if (light->at_infinity() && path.size() > 1) {
-        path[1].pdf_fwd = e.pdf_pos;
-        if (path[1].on_surface()) path[1].pdf_fwd *= std::fabs(dot(e.w, path[1].ng));
+        path[1].pdf_fwd = start->y0.pdf_pos;
+        if (path[1].on_surface()) path[1].pdf_fwd *= std::fabs(dot(start->y0.w, path[1].ng));
     }
     return path;
 }

@@ -83,6 +83,7 @@ struct SlabRay {
     bool negative[3];        ///< whether the ray runs towards -infinity on each axis
     float t_min;             ///< the ray's t_min, rounded down
 
+    SlabRay() = default;
     SlabRay(const Ray& ray, bool float_scene) : t_min(float_down(ray.t_min)) {
         double o_max = std::max({std::fabs(ray.o.x), std::fabs(ray.o.y), std::fabs(ray.o.z)});
         double d_max = std::max({std::fabs(ray.d.x), std::fabs(ray.d.y), std::fabs(ray.d.z)});

@@ -3,6 +3,7 @@
 // tests are in stages/bvh_wide_slab.h, the leaves in stages/bvh_kernels.h.
 #include "stages/bvh_wide.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/counters.h"
@@ -55,6 +56,31 @@ class WideReferenceBvh final : public Accelerator {
         return best;
     }
 
+    void intersect_packet(const Ray* rays, int count, std::optional<Hit>* hits) const override {
+        if (nodes_.empty() || count <= 1) {
+            for (int i = 0; i < count; ++i)
+                hits[i] = intersect(rays[i]);
+            return;
+        }
+        Packet p;
+#if PT_WIDE_BVH_X86
+        if (simd_) {
+            if (W == 4) closest_hit_packet_sse(rays, count, p);
+            else closest_hit_packet_avx(rays, count, p);
+        } else
+#endif
+            closest_hit_packet<PerRayPacketSlab<W, ScalarWideSlab<W>>>(rays, count, p);
+        for (int i = 0; i < count; ++i) {
+            if (!(p.found >> i & 1)) {
+                hits[i] = std::nullopt;
+                continue;
+            }
+            tester_.finish(p.best_slot[i], rays[i], p.best[i]);
+            p.best[i].primitive = primitives_[p.best_slot[i]];
+            hits[i] = p.best[i];
+        }
+    }
+
     bool occluded(const Ray& ray) const override {
         if (nodes_.empty()) return false;
 #if PT_WIDE_BVH_X86
@@ -70,6 +96,13 @@ class WideReferenceBvh final : public Accelerator {
     }
 
   private:
+    /// A packet's results: per ray the closest hit so far and its slot.
+    struct Packet {
+        Hit best[kPacketSize];
+        uint32_t best_slot[kPacketSize] = {};
+        uint32_t found = 0;  ///< bit i: ray i has a hit
+    };
+
 #if PT_WIDE_BVH_X86
     // The SIMD entry points: each inlines the whole traversal (flatten), so
     // that the box test runs in registers; the AVX2 ones are compiled for
@@ -89,6 +122,12 @@ class WideReferenceBvh final : public Accelerator {
     [[gnu::flatten, gnu::target("avx2")]] bool any_hit_avx(const Ray& ray) const {
         if constexpr (W == 8) return any_hit<AvxWideSlab>(ray);
         return false;
+    }
+    [[gnu::flatten]] void closest_hit_packet_sse(const Ray* rays, int count, Packet& p) const {
+        if constexpr (W == 4) closest_hit_packet<PerRayPacketSlab<4, SseWideSlab>>(rays, count, p);
+    }
+    [[gnu::flatten, gnu::target("avx2")]] void closest_hit_packet_avx(const Ray* rays, int count, Packet& p) const {
+        if constexpr (W == 8) closest_hit_packet<AvxPacketSlab>(rays, count, p);
     }
 #endif
 
@@ -170,6 +209,108 @@ class WideReferenceBvh final : public Accelerator {
         }
         add_counts(visited, tests);
         return found;
+    }
+
+    /// Closest hits of a packet: one traversal for all its rays. Each node
+    /// is fetched and decided once; the active rays test its W boxes (each
+    /// ray exactly as the single-ray test, so the same answers; PacketSlab
+    /// is one of bvh_wide_slab.h's packet tests), and a child is visited by
+    /// the rays that hit its box, nearest first by the smallest entry
+    /// distance among them. A kept child is skipped, for each of its rays, once that
+    /// ray's closest hit lies before the child's smallest entry distance (a
+    /// conservative cull: a ray kept too long only tests boxes it then misses).
+    template <class PacketSlab>
+    void closest_hit_packet(const Ray* rays, int count, Packet& p) const {
+        SlabRay slabs[kPacketSize];
+        typename Tester::RayData query[kPacketSize];
+        Ray r[kPacketSize];
+        // Unused lanes: an empty interval, so that no box test passes.
+        alignas(32) float t_box[kPacketSize], t_cull[kPacketSize];
+        for (int k = 0; k < kPacketSize; ++k) {
+            slabs[k] = SlabRay(rays[k < count ? k : 0], float_scene_);
+            t_box[k] = t_cull[k] = -INFINITY;
+        }
+        for (int k = 0; k < count; ++k) {
+            query[k] = tester_.prepare(rays[k]);
+            r[k] = rays[k];
+            t_box[k] = box_t_max(r[k].t_max);
+            t_cull[k] = t_box[k] * kFarScale;
+        }
+        const PacketSlab boxes(slabs);
+        uint64_t visited = 0, tests = 0;
+
+        struct Entry {
+            ChildRef ref;
+            uint32_t rays;  ///< bit k: ray k entered the child's box
+            float t;        ///< the smallest entry distance among those rays
+        };
+        Entry stack[(W - 1) * kMaxBvhDepth + W];
+        int size = 0;
+        ChildRef current{0, 0};
+        uint32_t active = (1u << count) - 1;
+        Hit hit;
+        for (;;) {
+            if (current.count == 0) {
+                const Node& node = nodes_[current.index];
+                uint32_t lane_rays[W];
+                float lane_t[W];
+                unsigned any = boxes.test(node, active, t_box, lane_rays, lane_t);
+                visited += uint64_t(W) * uint64_t(__builtin_popcount(active));
+                if (any != 0) {
+                    // As the single-ray traversal: push the children hit,
+                    // farthest at the bottom, and go on into the nearest.
+                    const int run = size;
+                    for (; any != 0; any &= any - 1) {
+                        int i = __builtin_ctz(any);
+                        Entry e{{node.child[i], node.count[i]}, lane_rays[i], lane_t[i]};
+                        int j = size++;
+                        for (; j > run && stack[j - 1].t < e.t; --j)
+                            stack[j] = stack[j - 1];
+                        stack[j] = e;
+                    }
+                    --size;
+                    current = stack[size].ref;
+                    active = stack[size].rays;
+                    continue;
+                }
+            } else {
+                for (uint32_t a = active; a != 0; a &= a - 1) {
+                    int k = __builtin_ctz(a);
+                    for (uint32_t slot = current.index, end = current.index + current.count; slot < end; ++slot) {
+                        ++tests;
+                        if (!tester_.intersect(slot, r[k], query[k], hit)) continue;
+                        // As the single-ray traversal: at equal t the larger id wins.
+                        if ((p.found >> k & 1) && hit.t == p.best[k].t &&
+                            primitives_[slot] < primitives_[p.best_slot[k]])
+                            continue;
+                        p.best[k] = hit;
+                        p.best_slot[k] = slot;
+                        p.found |= 1u << k;
+                        r[k].t_max = hit.t;
+                        t_box[k] = box_t_max(r[k].t_max);
+                        t_cull[k] = t_box[k] * kFarScale;
+                    }
+                }
+            }
+            // Next: the most recently kept child with a ray that has not passed it.
+            bool next = false;
+            while (size > 0) {
+                const Entry& e = stack[--size];
+                uint32_t rays_left = 0;
+                for (uint32_t a = e.rays; a != 0; a &= a - 1) {
+                    int k = __builtin_ctz(a);
+                    if (e.t <= t_cull[k]) rays_left |= 1u << k;
+                }
+                if (rays_left != 0) {
+                    current = e.ref;
+                    active = rays_left;
+                    next = true;
+                    break;
+                }
+            }
+            if (!next) break;
+        }
+        add_counts(visited, tests);
     }
 
     /// Any hit: the children hit are all kept, in lane order; stops at the

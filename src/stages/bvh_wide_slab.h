@@ -13,6 +13,7 @@
 // plane) never replaces t_near or t_far in any version (bvh_kernels.h).
 #pragma once
 
+#include "stages/accelerator.h"
 #include "stages/bvh_kernels.h"
 #include "stages/bvh_wide.h"
 
@@ -28,18 +29,19 @@ namespace pt::bvh_kernels {
 /// The portable version: a loop over the lanes.
 template <int W>
 struct ScalarWideSlab {
-    explicit ScalarWideSlab(const SlabRay& s) : slab(s) {}
-    const SlabRay& slab;
+    ScalarWideSlab() = default;
+    explicit ScalarWideSlab(const SlabRay& s) : slab(&s) {}
+    const SlabRay* slab = nullptr;  ///< the ray, prepared (outlives this)
 
     /// Bit i set when the ray enters child i's box before t_max; the entry
     /// distances go to t_enter.
     unsigned test(const WideBvhNode<W>& node, float t_max, float t_enter[W]) const {
         unsigned mask = 0;
         for (int i = 0; i < W; ++i) {
-            float t_near = slab.t_min, t_far = t_max;
+            float t_near = slab->t_min, t_far = t_max;
             for (int a = 0; a < 3; ++a) {
-                float t0 = (node.bounds[slab.near_plane[a]][i] - slab.o_near[a]) * slab.inv_near[a];
-                float t1 = (node.bounds[slab.far_plane[a]][i] - slab.o_far[a]) * slab.inv_far[a];
+                float t0 = (node.bounds[slab->near_plane[a]][i] - slab->o_near[a]) * slab->inv_near[a];
+                float t1 = (node.bounds[slab->far_plane[a]][i] - slab->o_far[a]) * slab->inv_far[a];
                 t_near = t0 > t_near ? t0 : t_near;
                 t_far = t1 < t_far ? t1 : t_far;
             }
@@ -50,12 +52,48 @@ struct ScalarWideSlab {
     }
 };
 
+/// A packet of up to kPacketSize rays against one node, one ray at a time
+/// with the single-ray test `Slab`: for each child hit by some active ray,
+/// the rays that hit it (lane_rays) and the smallest entry distance among
+/// them (lane_t); returns the mask of those children. Entries of children
+/// no ray hits are left unset.
+template <int W, class Slab>
+struct PerRayPacketSlab {
+    explicit PerRayPacketSlab(const SlabRay* slabs) {
+        for (int k = 0; k < kPacketSize; ++k)
+            boxes[k] = Slab(slabs[k]);
+    }
+    Slab boxes[kPacketSize];
+
+    unsigned test(const WideBvhNode<W>& node, uint32_t active, const float* t_box, uint32_t lane_rays[W],
+                  float lane_t[W]) const {
+        unsigned any = 0;
+        for (int i = 0; i < W; ++i) {
+            lane_rays[i] = 0;
+            lane_t[i] = INFINITY;
+        }
+        for (; active != 0; active &= active - 1) {
+            int k = __builtin_ctz(active);
+            alignas(32) float t_enter[W];
+            unsigned mask = boxes[k].test(node, t_box[k], t_enter);
+            any |= mask;
+            for (; mask != 0; mask &= mask - 1) {
+                int i = __builtin_ctz(mask);
+                lane_rays[i] |= 1u << k;
+                lane_t[i] = t_enter[i] < lane_t[i] ? t_enter[i] : lane_t[i];
+            }
+        }
+        return any;
+    }
+};
+
 #if PT_WIDE_BVH_X86
 
 /// 4 lanes with SSE (every x86-64 processor has it). The ray's values are
 /// broadcast once per ray, not once per node.
 struct SseWideSlab {
-    explicit SseWideSlab(const SlabRay& s) : slab(s) {
+    SseWideSlab() = default;
+    explicit SseWideSlab(const SlabRay& s) : slab(&s) {
         for (int a = 0; a < 3; ++a) {
             o_near[a] = _mm_set1_ps(s.o_near[a]);
             o_far[a] = _mm_set1_ps(s.o_far[a]);
@@ -64,14 +102,14 @@ struct SseWideSlab {
         }
         t_min = _mm_set1_ps(s.t_min);
     }
-    const SlabRay& slab;
+    const SlabRay* slab = nullptr;
     __m128 o_near[3], o_far[3], inv_near[3], inv_far[3], t_min;
 
     unsigned test(const WideBvhNode<4>& node, float t_max, float t_enter[4]) const {
         __m128 t_near = t_min, t_far = _mm_set1_ps(t_max);
         for (int a = 0; a < 3; ++a) {
-            __m128 t0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.bounds[slab.near_plane[a]]), o_near[a]), inv_near[a]);
-            __m128 t1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.bounds[slab.far_plane[a]]), o_far[a]), inv_far[a]);
+            __m128 t0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.bounds[slab->near_plane[a]]), o_near[a]), inv_near[a]);
+            __m128 t1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.bounds[slab->far_plane[a]]), o_far[a]), inv_far[a]);
             t_near = _mm_max_ps(t0, t_near);  // t0 > t_near ? t0 : t_near (NaN keeps t_near)
             t_far = _mm_min_ps(t1, t_far);    // t1 < t_far ? t1 : t_far
         }
@@ -87,7 +125,8 @@ struct SseWideSlab {
 /// double-precision triangle test into fused operations, which changes its
 /// bits and with them the agreement with the linear scan.
 struct AvxWideSlab {
-    [[gnu::target("avx2")]] explicit AvxWideSlab(const SlabRay& s) : slab(s) {
+    AvxWideSlab() = default;
+    [[gnu::target("avx2")]] explicit AvxWideSlab(const SlabRay& s) : slab(&s) {
         for (int a = 0; a < 3; ++a) {
             o_near[a] = _mm256_set1_ps(s.o_near[a]);
             o_far[a] = _mm256_set1_ps(s.o_far[a]);
@@ -96,22 +135,89 @@ struct AvxWideSlab {
         }
         t_min = _mm256_set1_ps(s.t_min);
     }
-    const SlabRay& slab;
+    const SlabRay* slab = nullptr;
     __m256 o_near[3], o_far[3], inv_near[3], inv_far[3], t_min;
 
     [[gnu::target("avx2")]] unsigned test(const WideBvhNode<8>& node, float t_max, float t_enter[8]) const {
         __m256 t_near = t_min, t_far = _mm256_set1_ps(t_max);
         for (int a = 0; a < 3; ++a) {
             __m256 t0 =
-                _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(node.bounds[slab.near_plane[a]]), o_near[a]), inv_near[a]);
+                _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(node.bounds[slab->near_plane[a]]), o_near[a]), inv_near[a]);
             __m256 t1 =
-                _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(node.bounds[slab.far_plane[a]]), o_far[a]), inv_far[a]);
+                _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(node.bounds[slab->far_plane[a]]), o_far[a]), inv_far[a]);
             t_near = _mm256_max_ps(t0, t_near);
             t_far = _mm256_min_ps(t1, t_far);
         }
         _mm256_storeu_ps(t_enter, t_near);
         __m256 hit = _mm256_cmp_ps(t_near, _mm256_mul_ps(t_far, _mm256_set1_ps(kFarScale)), _CMP_LE_OQ);
         return unsigned(_mm256_movemask_ps(hit)) & node.valid;
+    }
+};
+
+static_assert(kPacketSize == 8, "AvxPacketSlab holds one ray per AVX lane");
+
+/// A packet of 8 rays against an 8-wide node with the rays in the AVX
+/// lanes ("transposed"): each child box is tested against all rays at once,
+/// so the rays that hit it come out of one MOVMSKPS with no branch per ray.
+/// Per lane the operations are bvh_kernels::slab_test's: the near plane is
+/// picked per ray by the sign of its direction (BLENDVPS with the sign
+/// mask, where the single-ray test indexes the plane), then the same
+/// subtract, multiply, max and min in the same order. Only functions
+/// compiled for AVX2 may use it (AvxWideSlab).
+struct AvxPacketSlab {
+    [[gnu::target("avx2")]] explicit AvxPacketSlab(const SlabRay* slabs) {
+        for (int a = 0; a < 3; ++a) {
+            alignas(32) float on[8], of[8], in[8], inf[8], neg[8];
+            for (int k = 0; k < 8; ++k) {
+                on[k] = slabs[k].o_near[a];
+                of[k] = slabs[k].o_far[a];
+                in[k] = slabs[k].inv_near[a];
+                inf[k] = slabs[k].inv_far[a];
+                neg[k] = slabs[k].negative[a] ? -0.0f : 0.0f;  // the sign bit selects in BLENDVPS
+            }
+            o_near[a] = _mm256_load_ps(on);
+            o_far[a] = _mm256_load_ps(of);
+            inv_near[a] = _mm256_load_ps(in);
+            inv_far[a] = _mm256_load_ps(inf);
+            negative[a] = _mm256_load_ps(neg);
+        }
+        alignas(32) float tm[8];
+        for (int k = 0; k < 8; ++k)
+            tm[k] = slabs[k].t_min;
+        t_min = _mm256_load_ps(tm);
+    }
+    __m256 o_near[3], o_far[3], inv_near[3], inv_far[3], negative[3], t_min;
+
+    [[gnu::target("avx2")]] unsigned test(const WideBvhNode<8>& node, uint32_t active, const float* t_box,
+                                          uint32_t lane_rays[8], float lane_t[8]) const {
+        const __m256 t_max = _mm256_load_ps(t_box);  // -inf in unused lanes: no hit there
+        const __m256 scale = _mm256_set1_ps(kFarScale), inf = _mm256_set1_ps(INFINITY);
+        unsigned any = 0;
+        for (unsigned valid = node.valid; valid != 0; valid &= valid - 1) {
+            int c = __builtin_ctz(valid);
+            __m256 t_near = t_min, t_far = t_max;
+            for (int a = 0; a < 3; ++a) {
+                __m256 lo = _mm256_set1_ps(node.bounds[a][c]), hi = _mm256_set1_ps(node.bounds[3 + a][c]);
+                __m256 near_bound = _mm256_blendv_ps(lo, hi, negative[a]);
+                __m256 far_bound = _mm256_blendv_ps(hi, lo, negative[a]);
+                __m256 t0 = _mm256_mul_ps(_mm256_sub_ps(near_bound, o_near[a]), inv_near[a]);
+                __m256 t1 = _mm256_mul_ps(_mm256_sub_ps(far_bound, o_far[a]), inv_far[a]);
+                t_near = _mm256_max_ps(t0, t_near);
+                t_far = _mm256_min_ps(t1, t_far);
+            }
+            __m256 hit = _mm256_cmp_ps(t_near, _mm256_mul_ps(t_far, scale), _CMP_LE_OQ);
+            unsigned rays = unsigned(_mm256_movemask_ps(hit)) & active;
+            if (rays == 0) continue;
+            any |= 1u << c;
+            lane_rays[c] = rays;
+            // The smallest entry distance among the rays that hit: a horizontal min.
+            __m256 t = _mm256_blendv_ps(inf, t_near, hit);
+            __m128 m = _mm_min_ps(_mm256_castps256_ps128(t), _mm256_extractf128_ps(t, 1));
+            m = _mm_min_ps(m, _mm_movehl_ps(m, m));
+            m = _mm_min_ss(m, _mm_shuffle_ps(m, m, 1));
+            lane_t[c] = _mm_cvtss_f32(m);
+        }
+        return any;
     }
 };
 

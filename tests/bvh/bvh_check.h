@@ -2,6 +2,8 @@
 // an accelerator with them, and the structural invariants of a FlatBvh.
 #pragma once
 
+#include <algorithm>
+
 #include <doctest/doctest.h>
 
 #include <cstring>
@@ -48,8 +50,7 @@ inline Expected linear_answers(const Scene& scene, const std::vector<Ray>& rays,
 inline void check_agrees(const Accelerator& accel, const std::vector<Ray>& rays,
                          const Expected& expected, bool compare_bits = true) {
     int mismatches = 0, any_hit_mismatches = 0;
-    for (size_t i = 0; i < rays.size(); ++i) {
-        std::optional<Hit> got = accel.intersect(rays[i]);
+    auto compare = [&](const std::optional<Hit>& got, size_t i, const char* query) {
         const std::optional<Hit>& want = expected.hits[i];
         bool ok = got.has_value() == want.has_value();
         if (ok && got) {
@@ -60,19 +61,27 @@ inline void check_agrees(const Accelerator& accel, const std::vector<Ray>& rays,
         }
         if (!ok && mismatches++ == 0) {
             const Ray& r = rays[i];
-            INFO("ray " << i << " o=(" << r.o.x << "," << r.o.y << "," << r.o.z << ") d=(" << r.d.x
-                        << "," << r.d.y << "," << r.d.z << ") t=[" << r.t_min << "," << r.t_max
-                        << "]");
-            INFO("linear: " << (want ? std::to_string(want->primitive) +
-                                           " t=" + std::to_string(want->t)
+            INFO(query << ": ray " << i << " o=(" << r.o.x << "," << r.o.y << "," << r.o.z << ") d=(" << r.d.x
+                       << "," << r.d.y << "," << r.d.z << ") t=[" << r.t_min << "," << r.t_max << "]");
+            INFO("linear: " << (want ? std::to_string(want->primitive) + " t=" + std::to_string(want->t)
                                      : "miss"));
-            INFO(
-                "bvh:    " << (got ? std::to_string(got->primitive) + " t=" + std::to_string(got->t)
-                                   : "miss"));
+            INFO("bvh:    " << (got ? std::to_string(got->primitive) + " t=" + std::to_string(got->t)
+                                    : "miss"));
             CHECK(ok);
         }
+    };
+    for (size_t i = 0; i < rays.size(); ++i) {
+        compare(accel.intersect(rays[i]), i, "intersect");
         if (accel.occluded(rays[i]) != expected.occluded[i]) ++any_hit_mismatches;
-        if (expected.occluded[i] != want.has_value()) ++any_hit_mismatches;
+        if (expected.occluded[i] != expected.hits[i].has_value()) ++any_hit_mismatches;
+    }
+    // The same rays in packets of every size from 1 to kPacketSize, in turn.
+    std::optional<Hit> packet[kPacketSize];
+    for (size_t i = 0, size = 1; i < rays.size(); i += size, size = size % kPacketSize + 1) {
+        int count = int(std::min(size, rays.size() - i));
+        accel.intersect_packet(&rays[i], count, packet);
+        for (int k = 0; k < count; ++k)
+            compare(packet[k], i + k, "intersect_packet");
     }
     CHECK(mismatches == 0);
     CHECK(any_hit_mismatches == 0);

@@ -119,6 +119,10 @@ TEST_CASE("the binaries: grade holds no student code; a runner no reference of w
         {"zero_bounce_radiance", "pt::reference::estimate_direct_lighting_hemisphere("},
         {"has_converged", "pt::reference::has_converged("},
         {"at_least_one_bounce_radiance", "pt::reference::at_least_one_bounce_radiance("},
+        {"random_walk", "pt::reference::random_walk("},
+        {"connect", "pt::reference::connect("},
+        {"mis_weight", "pt::reference::mis_weight("},
+        {"bdpt", "pt::reference::connect("},
         // engine helpers that would answer a task whole (scripts/weaken_reference.sh)
         {"estimate_direct_lighting_importance", "pt::sample_lights_mis("},
         {"estimate_direct_lighting_mis", "pt::sample_lights_mis("},

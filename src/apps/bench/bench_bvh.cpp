@@ -83,6 +83,7 @@ struct KernelRow {
     double mrays = 0;             ///< reference BVH (default width), inlined triangle test
     double mrays_wide4 = 0;       ///< --bvh-width 4 (SSE)
     double mrays_wide8 = 0;       ///< --bvh-width 8 (AVX2 where available)
+    double mrays_packets = 0;     ///< default width, closest hits in packets (0: not timed)
     double mrays_table = 0;       ///< reference BVH, triangle test through the stage table
     double mrays_binary = 0;      ///< binary reference BVH (--bvh-width 2)
     double mrays_kdtree = 0;      ///< --accel kdtree
@@ -177,7 +178,8 @@ std::vector<KernelRow> time_kernels(const Scene& full_scene, int width, int heig
             [&] { return trace_pass(*kdtree, rays, any_hit).seconds; },
             [&] { return trace_pass(*grid, rays, any_hit).seconds; },
             [&] { return trace_pass(*wide4, rays, any_hit).seconds; },
-            [&] { return trace_pass(*wide8, rays, any_hit).seconds; }};
+            [&] { return trace_pass(*wide8, rays, any_hit).seconds; },
+            [&] { return any_hit ? 0.0 : trace_packets(*bvh, rays).seconds; }};
         if (embree) passes.push_back([&] { return embree->trace(rays, any_hit).seconds; });
         std::vector<double> best = best_times(passes, seconds);
         row.mrays = rays.size() / best[0] * 1e-6;
@@ -187,8 +189,9 @@ std::vector<KernelRow> time_kernels(const Scene& full_scene, int width, int heig
         row.mrays_grid = rays.size() / best[4] * 1e-6;
         row.mrays_wide4 = rays.size() / best[5] * 1e-6;
         row.mrays_wide8 = rays.size() / best[6] * 1e-6;
+        if (!any_hit) row.mrays_packets = rays.size() / best[7] * 1e-6;
         if (embree) {
-            row.embree_mrays = rays.size() / best[7] * 1e-6;
+            row.embree_mrays = rays.size() / best[8] * 1e-6;
             if (!any_hit) {
                 std::vector<uint32_t> theirs = embree->closest_triangles(rays);
                 uint64_t same = 0;
@@ -326,9 +329,10 @@ void print_tables(const std::vector<SceneResult>& results, int width, int height
               << ")\n\n";
     std::vector<std::string> header = {"scene",         "rays",           "count",        "BVH8 Mrays/s",
                                        "BVH4 Mrays/s",  "BVH2 Mrays/s",   "kd-tree Mrays/s", "grid Mrays/s",
+                                       "packets Mrays/s",
                                        "via table Mrays/s", "nodes/ray",  "tests/ray"};
     if (embree) {
-        for (const char* h : {"Embree Mrays/s", "BVH8 / Embree", "BVH4 / Embree", "same hit"})
+        for (const char* h : {"Embree Mrays/s", "BVH8 / Embree", "BVH4 / Embree", "packets / Embree", "same hit"})
             header.push_back(h);
     }
     Table k(header, 2);
@@ -342,13 +346,14 @@ void print_tables(const std::vector<SceneResult>& results, int width, int height
                                               fixed(row.mrays_binary, 2),
                                               fixed(row.mrays_kdtree, 2),
                                               fixed(row.mrays_grid, 2),
+                                              row.mrays_packets > 0 ? fixed(row.mrays_packets, 2) : "-",
                                               fixed(row.mrays_table, 2),
                                               fixed(row.nodes, 1),
                                               fixed(row.tests, 2)};
             if (embree) {
                 cells.push_back(fixed(row.embree_mrays, 2));
-                for (double ours : {row.mrays_wide8, row.mrays_wide4})
-                    cells.push_back(row.embree_mrays > 0 ? fixed(ours / row.embree_mrays, 2) : "-");
+                for (double ours : {row.mrays_wide8, row.mrays_wide4, row.mrays_packets})
+                    cells.push_back(row.embree_mrays > 0 && ours > 0 ? fixed(ours / row.embree_mrays, 2) : "-");
                 cells.push_back(row.agreement >= 0 ? fixed(100 * row.agreement, 2) + "%" : "-");
             }
             k.add(cells);
@@ -356,7 +361,7 @@ void print_tables(const std::vector<SceneResult>& results, int width, int height
     }
     std::cout << k.markdown();
     std::cout << "\n### Builds (1 thread; M tri/s = million triangles per second) and memory\n\n";
-    std::vector<std::string> build_header = {"scene", "triangles", "BVH4 Mtri/s", "BVH2 Mtri/s",
+    std::vector<std::string> build_header = {"scene", "triangles", "BVH Mtri/s", "BVH2 Mtri/s",
                                              "kd-tree Mtri/s", "grid Mtri/s", "kd-tree B/tri", "grid B/tri"};
     if (embree) build_header.push_back("Embree Mtri/s");
     Table b(build_header, 2);
@@ -423,6 +428,7 @@ void write_json(const std::string& path, const std::vector<SceneResult>& results
                                  {"via_table_mrays_per_second", k.mrays_table},
                                  {"wide4_mrays_per_second", k.mrays_wide4},
                                  {"wide8_mrays_per_second", k.mrays_wide8},
+                                 {"packets_mrays_per_second", k.mrays_packets},
                                  {"binary_mrays_per_second", k.mrays_binary},
                                  {"kdtree_mrays_per_second", k.mrays_kdtree},
                                  {"grid_mrays_per_second", k.mrays_grid},

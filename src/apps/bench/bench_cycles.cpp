@@ -28,6 +28,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <string>
 #include <thread>
 
 #include "apps/bench/accuracy_reference.h"
@@ -383,8 +384,10 @@ int run_cycles(const std::vector<std::string>& args) {
        << scene.film_width << "x" << scene.film_height << ", -m " << o.max_depth << " (Cycles' max bounces "
        << o.max_depth - 1 << "), " << o.threads << " threads, box filter, seed " << o.seed << "; "
        << version << ", sampling pattern " << pattern << "; pathtracer --sampler " << to_string(o.sampler)
-       << ". Reference: pathtracer, " << reference.spp << " spp (" << reference.source
-       << "). Load average " << load_before << " before, " << load_average() << " after.\n\n";
+       << ". Reference: pathtracer, "
+       << (reference.spp > 0 ? std::to_string(reference.spp) + " spp (" + reference.source + ")"
+                             : "the file " + reference.path + " (spp unknown: no sidecar .json)")
+       << ". Load average " << load_before << " before, " << load_average() << " after.\n\n";
     Table table({"renderer", "spp", "CPU s per thread", "wall s", "RMSE", "clamped RMSE"});
     for (const auto* rows : {&ours, &theirs})
         for (const CyclesRow& r : *rows)

@@ -253,6 +253,24 @@ KernelPass trace_pass(const Accelerator& accel, const std::vector<Ray>& rays, bo
     return pass;
 }
 
+KernelPass trace_packets(const Accelerator& accel, const std::vector<Ray>& rays) {
+    KernelPass pass;
+    RayCounters before = thread_counters();
+    CpuTimer timer;
+    uint64_t hits = 0;
+    std::optional<Hit> packet[kPacketSize];
+    for (size_t i = 0; i < rays.size(); i += kPacketSize) {
+        int count = int(std::min<size_t>(kPacketSize, rays.size() - i));
+        accel.intersect_packet(&rays[i], count, packet);
+        for (int k = 0; k < count; ++k)
+            hits += packet[k].has_value() ? 1 : 0;
+    }
+    pass.seconds = timer.seconds();
+    pass.counters = thread_counters() - before;
+    pass.hits = hits;
+    return pass;
+}
+
 std::vector<double> best_times(const std::vector<std::function<double()>>& passes,
                                double min_seconds, int min_rounds) {
     std::vector<double> best(passes.size(), INFINITY);

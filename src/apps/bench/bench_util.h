@@ -111,6 +111,10 @@ struct KernelPass {
 /// Traces every ray once (closest hit, or any hit when `any_hit`).
 KernelPass trace_pass(const Accelerator& accel, const std::vector<Ray>& rays, bool any_hit);
 
+/// Traces every ray once for its closest hit, in packets of kPacketSize
+/// consecutive rays (Accelerator::intersect_packet).
+KernelPass trace_packets(const Accelerator& accel, const std::vector<Ray>& rays);
+
 /// Runs the passes in turn, round after round, until every one has run at
 /// least `min_rounds` times and `min_seconds` have passed in total; returns
 /// each pass's fastest time. Interleaving spreads the noise of other

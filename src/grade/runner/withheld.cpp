@@ -6,6 +6,7 @@
 // calls the reference of the function it is graded on fails that task.
 #include <stdexcept>
 
+#include "stages/bdpt.h"
 #include "stages/mis.h"
 #include "stages/stages.h"
 
@@ -143,6 +144,21 @@ Vec3 sample_hg(const Vec3&, double, Vec2) { withheld("sample_hg"); }
 Color in_scattered_radiance(const RenderContext&, const Vec3&, const Vec3&, int, Rng&) {
     withheld("in_scattered_radiance");
 }
+#endif
+#ifdef PT_WITHHOLD_RANDOM_WALK
+int random_walk(const RenderContext&, const Ray&, const Color&, double, int, Transport, Rng&,
+                std::vector<PathVertex>&) {
+    withheld("random_walk");
+}
+#endif
+#ifdef PT_WITHHOLD_CONNECT
+Connection connect(const RenderContext&, const std::vector<PathVertex>&, int, const std::vector<PathVertex>&, int,
+                   Rng&) {
+    withheld("connect");
+}
+#endif
+#ifdef PT_WITHHOLD_MIS_WEIGHT
+double mis_weight(const MisVertex*, int, const MisVertex*, int, bool, MisHeuristic) { withheld("mis_weight"); }
 #endif
 
 }  // namespace pt::reference
