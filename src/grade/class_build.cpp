@@ -119,6 +119,10 @@ ClassBuildResult build_submission(const ClassBuildTools& tools, const std::strin
         if (e.find("out of memory") != std::string::npos)
             e += " (each compiler process may use " +
                  std::to_string(long(tools.limits.memory_bytes / 1e9)) + " GB)";
+        if (e.find("Killed signal") != std::string::npos ||
+            e.find("CPU time limit") != std::string::npos)
+            e += " (each compiler process may use " +
+                 std::to_string(long(tools.limits.cpu_seconds)) + " s of CPU time)";
         r.first_error = e.empty() ? why(b, "the build", tools.timeout) : e;
         r.internal = e.empty() && !b.timed_out;  // a compile that never ends is the student's
         r.seconds = timer.seconds();
