@@ -248,7 +248,7 @@ std::string usage(const std::string& program, StageSet default_student) {
       << "  --knn K         pm: photons per estimate (k nearest, within 5% of the scene's radius) [50]\n"
       << "  --photon-kernel box|cone|epanechnikov  pm: density estimation kernel   [epanechnikov]\n"
       << "  --photon-view caustic|global  pm: show one photon map's radiance estimate\n"
-      << "  --passes N, --photons-per-pass N  sppm: passes, photons traced per pass  [16, 100000]\n"
+      << "  --passes N, --photons-per-pass N  sppm: passes, photons traced per pass  [16, one per pixel]\n"
       << "  --alpha A       sppm: fraction of new photons kept per pass, in (0, 1)  [0.667]\n"
       << "  --student LIST  stages with student code: camera,intersect,bvh,direct,global,adaptive,sampler,photon,media,\n"
       << "                  all or none                                            [" << default_student.to_string() << "]\n"

@@ -281,6 +281,8 @@ struct ZSobolPixelCache {
     uint32_t x = 0, y = 0;
     std::array<uint64_t, kCachedKeys / 64> valid{};  ///< bit d: entry d is set
     struct Entry {
+        uint64_t owner = 0;       ///< the sampler whose digits these are (0: none); valid says whether for this pixel
+        uint64_t pixel = 0;       ///< the Morton code of the pixel they are for
         uint64_t digits;          ///< the pixel's permuted digits (shifts morton_bits + sample_bits - 2 .. sample_bits)
         uint32_t reversed_dim1;   ///< sobol_dimension1_reversed(digits)
         std::array<uint8_t, 16> low;  ///< up to two sample digits: the permuted ones, by the sample's
@@ -292,14 +294,29 @@ thread_local ZSobolPixelCache zsobol_pixel_cache;
 /// Sample digits (base 4, above a lone base-2 digit) that the cache permutes in advance.
 constexpr int kCachedSampleLevels = 2;
 
-/// Fills entry `dimension` of the cache for the pixel of Morton code
-/// `pixel_code` (kept out of line: it runs once per pixel and dimension).
-[[gnu::noinline]] void fill_zsobol_entry(ZSobolPixelCache::Entry& e, uint64_t pixel_code, int morton_bits,
-                                        int sample_bits, int lone, uint64_t key, const Base4Permutations& base4) {
+/// Fills an entry of the cache for the pixel of Morton code `pixel_code`
+/// (kept out of line: it runs once per pixel and dimension). A permuted
+/// digit depends on the digits above it, so when the entry holds sampler
+/// `owner`'s digits of another pixel, only the digits from the highest one
+/// in which the two Morton codes differ down are permuted anew: in a 16x16
+/// tile, rendered row by row, usually just the last one or two of nine.
+[[gnu::noinline]] void fill_zsobol_entry(ZSobolPixelCache::Entry& e, uint64_t owner, uint64_t pixel_code,
+                                        int morton_bits, int sample_bits, int lone, uint64_t key,
+                                        const Base4Permutations& base4) {
     const int bits = morton_bits + sample_bits;
     const uint64_t code = pixel_code << sample_bits;
-    e.digits = permute_base4_digits(code, bits, bits - 2, sample_bits, key, base4);
-    e.reversed_dim1 = sobol_dimension1_reversed(e.digits);
+    if (e.owner != owner) {
+        e.digits = permute_base4_digits(code, bits, bits - 2, sample_bits, key, base4);
+        e.reversed_dim1 = sobol_dimension1_reversed(e.digits);
+    } else if (const uint64_t diff = e.pixel ^ pixel_code; diff != 0) {
+        const int from = ((63 - __builtin_clzll(diff)) & ~1) + sample_bits;  // the highest digit that differs
+        const uint64_t redone = ((uint64_t(1) << (from + 2)) - 1) & ~((uint64_t(1) << sample_bits) - 1);
+        const uint64_t old = e.digits;
+        e.digits = (old & ~redone) | permute_base4_digits(code, bits, from, sample_bits, key, base4);
+        e.reversed_dim1 ^= sobol_dimension1_reversed(old ^ e.digits);  // linear
+    }
+    e.owner = owner;
+    e.pixel = pixel_code;
     const int levels = (sample_bits - lone) / 2;
     if (levels > kCachedSampleLevels) return;
     // The sample digits above the lone one, j = 4 a + b (or j = b for one
@@ -322,7 +339,9 @@ constexpr int kCachedSampleLevels = 2;
 
 }  // namespace
 
-uint64_t Sampler::zsobol_index(const PixelSample& s, uint32_t dimension, uint32_t* reversed_dim1) const {
+// Inlined into get_1d and get_2d (its only callers): a draw's hot path.
+[[gnu::always_inline]] inline uint64_t Sampler::zsobol_index(const PixelSample& s, uint32_t dimension,
+                                                             uint32_t* reversed_dim1) const {
     const Tables& t = *tables_;
     const int bits = t.morton_bits + t.sample_bits;
     const uint64_t code = s.global_index;  // start(): the Morton code, then the sample index
@@ -340,7 +359,7 @@ uint64_t Sampler::zsobol_index(const PixelSample& s, uint32_t dimension, uint32_
         ZSobolPixelCache::Entry& e = cache.entries[dimension];
         const uint64_t key = t.index_keys[dimension];
         if (!(valid & bit)) {
-            fill_zsobol_entry(e, code >> t.sample_bits, t.morton_bits, t.sample_bits, lone, key, t.base4);
+            fill_zsobol_entry(e, id_, code >> t.sample_bits, t.morton_bits, t.sample_bits, lone, key, t.base4);
             valid |= bit;
         }
         out = pixel_part = e.digits;

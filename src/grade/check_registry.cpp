@@ -55,11 +55,13 @@ const std::vector<CheckInfo>& all_checks() {
         {"bvh_performance",
          TaskType::performance,
          check_bvh_performance,
-         {"scene", "rays", "linear_rays", "repeats", "max_leaf", "min_speedup", "max_tests_per_ray",
-          "max_nodes_per_ray", "quality_rays", "max_sah_ratio", "max_depth_ratio",
-          "max_visited_ratio"},
-         "the student's whole BVH: primitive tests per ray, speedup over the linear scan; the "
-         "tree's SAH cost, depth and nodes visited per incoherent ray against the reference's"},
+         {"scene", "rays", "timed_rays", "max_timed_seconds", "max_wrong_answers", "linear_rays",
+          "repeats", "max_leaf", "min_speedup", "max_tests_per_ray", "max_nodes_per_ray",
+          "quality_rays", "max_sah_ratio", "max_depth_ratio", "max_visited_ratio"},
+         "the student's whole BVH: primitive tests and nodes per ray of the grader's traversal of "
+         "the student's tree; the student's traversal's speedup over the linear scan (the "
+         "runner's CPU time, counted by the kernel); the tree's SAH cost, depth and nodes "
+         "visited per incoherent ray against the reference's"},
         {"diffuse_f",
          TaskType::function,
          check_diffuse_f,

@@ -51,6 +51,7 @@ TaskResult grade_task_isolated(const TaskSpec& spec, const GradeEnvironment& env
 
 /// Kills every child process of this one that is not in this process's
 /// session (what a task left behind) and reaps it. Called after every task.
-void kill_leftover_children();
+/// Returns the CPU seconds (user + system) the reaped processes used.
+double kill_leftover_children();
 
 }  // namespace pt

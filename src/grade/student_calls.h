@@ -31,7 +31,7 @@
 
 namespace pt {
 
-struct AcceleratorMeasurement;
+struct TraversalTiming;
 
 /// The log does not match the grader's calls or breaks a size limit.
 class RunnerOutputError : public std::runtime_error {
@@ -66,13 +66,19 @@ Stages start_replay(std::string log);
 void stop_replay();
 
 /// The hooks of image and performance checks: in direct mode they render
-/// (measure); in record mode they render (measure) with the log paused and
-/// log the result; in replay mode they return the logged one, checked
-/// against the case's film size.
+/// (time); in record mode they render (time) with the log paused and log
+/// the result; in replay mode they return the logged one, checked against
+/// the case's film size (the rays). A logged timing holds the answers
+/// only: its seconds are the runner's CPU time, set_runner_cpu_seconds.
 RenderResult student_render(const Scene& scene, const ImageCase& c, const Stages& stages, int spp,
                             uint64_t seed, int threads);
-AcceleratorMeasurement student_measurement(const Accelerator& accelerator,
-                                           const std::vector<Ray>& rays, int repeats);
+TraversalTiming student_traversal_timing(const BVHTree& tree, BvhIntersectFn traverse,
+                                         const std::vector<Ray>& rays, double max_seconds);
+
+/// The CPU seconds (user + system) of the runner whose log is replayed
+/// next, with every process it started, as the kernel counted them
+/// (isolation.cpp, wait4): the time of a timing in replay mode.
+void set_runner_cpu_seconds(double seconds);
 
 /// `text` with bytes other than printable ASCII replaced by '?', at most
 /// `limit` bytes: what a report may quote from untrusted output.

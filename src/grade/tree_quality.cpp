@@ -14,11 +14,15 @@ double surface_area(const BBox& b) {
     return 2 * (e.x * e.y + e.y * e.z + e.z * e.x);
 }
 
-/// Closest hit under `node`, counting every node whose box is tested.
-/// An explicit stack: a bad tree may be thousands of levels deep.
-void closest_hit(const BVHTree& tree, const Ray& ray, size_t& visited) {
+}  // namespace
+
+std::optional<Hit> fixed_closest_hit(const BVHTree& tree, const Ray& ray, size_t& visited,
+                                     size_t& tests) {
+    // An explicit stack: a bad tree may be thousands of levels deep.
     Ray r = ray;
-    std::vector<const BVHNode*> stack{tree.root.get()};
+    std::optional<Hit> best;
+    std::vector<const BVHNode*> stack;
+    if (tree.root) stack.push_back(tree.root.get());
     while (!stack.empty()) {
         const BVHNode* node = stack.back();
         stack.pop_back();
@@ -26,8 +30,20 @@ void closest_hit(const BVHTree& tree, const Ray& ray, size_t& visited) {
         double t0 = r.t_min, t1 = r.t_max;
         if (!reference::bbox_intersect(node->bb, r, t0, t1)) continue;
         if (node->is_leaf()) {
-            for (size_t i = node->start; i < node->end; ++i)
-                if (std::optional<Hit> hit = tree.intersect_primitive(i, r)) r.t_max = hit->t;
+            // A recorded tree comes from the student: ranges outside the list are skipped.
+            const size_t end = std::min(node->end, tree.primitives.size());
+            for (size_t i = node->start; i < end; ++i) {
+                ++tests;
+                std::optional<Hit> hit = tree.intersect_primitive(i, r);
+                if (hit && BVHTree::closer(*hit, best)) {
+                    best = hit;
+                    r.t_max = hit->t;
+                }
+            }
+            continue;
+        }
+        if (!node->l || !node->r) {  // one child: a broken student tree
+            stack.push_back(node->l ? node->l.get() : node->r.get());
             continue;
         }
         // Nearer child first: push it last. Entry t of each child box.
@@ -40,9 +56,8 @@ void closest_hit(const BVHTree& tree, const Ray& ray, size_t& visited) {
         stack.push_back(second);
         stack.push_back(first);
     }
+    return best;
 }
-
-}  // namespace
 
 std::vector<Ray> incoherent_rays(const BBox& bounds, int count, Rng& rng) {
     std::vector<Ray> rays;
@@ -65,16 +80,16 @@ TreeQuality measure_tree_quality(const BVHTree& tree, const std::vector<Ray>& ra
         q.depth = std::max(q.depth, depth);
         const double share = surface_area(node->bb) / root_area;
         if (node->is_leaf()) {
-            q.sah_cost += share * double(node->end - node->start);
+            q.sah_cost += share * double(node->end > node->start ? node->end - node->start : 0);
         } else {
             q.sah_cost += share;
-            stack.push_back({node->l.get(), depth + 1});
-            stack.push_back({node->r.get(), depth + 1});
+            for (const BVHNode* child : {node->l.get(), node->r.get()})
+                if (child) stack.push_back({child, depth + 1});
         }
     }
-    size_t visited = 0;
+    size_t visited = 0, tests = 0;
     for (const Ray& ray : rays)
-        closest_hit(tree, ray, visited);
+        fixed_closest_hit(tree, ray, visited, tests);
     q.nodes_per_ray = rays.empty() ? 0 : double(visited) / double(rays.size());
     return q;
 }

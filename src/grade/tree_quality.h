@@ -17,6 +17,7 @@
 //   reported relative to the reference tree's.
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include "core/ray.h"
@@ -30,6 +31,13 @@ struct TreeQuality {
     int depth = 0;             ///< edges on the longest root-to-leaf path
     double nodes_per_ray = 0;  ///< nodes whose box the fixed traversal tests, per ray
 };
+
+/// The fixed traversal above: the closest hit of `ray` in `tree` (ties to
+/// the larger primitive id, as BVHTree::closer), adding the nodes whose box
+/// it tests to `visited` and its primitive tests to `tests`. The grader's
+/// own traversal of a student's tree (the performance task counts with it).
+std::optional<Hit> fixed_closest_hit(const BVHTree& tree, const Ray& ray, size_t& visited,
+                                     size_t& tests);
 
 /// The measures above for `tree` (built), over `rays`.
 TreeQuality measure_tree_quality(const BVHTree& tree, const std::vector<Ray>& rays);

@@ -81,6 +81,12 @@ RenderResult render_sppm(const RenderContext& context, const RenderOptions& opti
     const PixelRect area = options.cell.value_or(PixelRect{0, 0, scene.film_width, scene.film_height});
     const size_t pixel_count = size_t(area.width) * size_t(area.height);
     const double r0 = photon_radius(context, kInitialRadius);
+    // One photon per pixel by default: a pass costs about as much in photons
+    // as in camera rays. A fixed 100,000 made a 48 x 36 render spend
+    // almost all of its time on photons, with 1 camera sample (direct light,
+    // antialiasing) per 58 photons per pixel: 2.5 times less efficient on
+    // bdpt_caustic (docs/photon_mapping.md).
+    const uint64_t photons_per_pass = ps.photons_per_pass > 0 ? ps.photons_per_pass : uint64_t(pixel_count);
     std::vector<PixelState> pixels(pixel_count);
     for (PixelState& p : pixels) p.radius2 = r0 * r0;
 
@@ -118,8 +124,8 @@ RenderResult render_sppm(const RenderContext& context, const RenderOptions& opti
         // 2. Photon pass: this pass's photons and their tree.
         PhotonMap map = make_photon_map(
             context,
-            trace_photons(context, {ps.photons_per_pass, PhotonPaths::indirect, 1000 + uint64_t(pass)}, options.threads),
-            ps.photons_per_pass);
+            trace_photons(context, {photons_per_pass, PhotonPaths::indirect, 1000 + uint64_t(pass)}, options.threads),
+            photons_per_pass);
         // 3. The progressive update at every visible point.
         parallel_for(pixel_count, options.threads, result.counters, [&](size_t i) {
             PixelState& p = pixels[i];

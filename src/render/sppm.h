@@ -10,9 +10,10 @@
 //      glass to its first non-specular point x (the pass's visible point);
 //      the emission it sees and the direct light at x (light sampling) are
 //      averaged over the passes like a path tracer's samples;
-//   2. photon pass: --photons-per-pass photons (stages/photon.h), storing
-//      their non-specular hits after the first (direct light is step 1's),
-//      in a kd-tree that lives for this pass only;
+//   2. photon pass: --photons-per-pass photons (default one per pixel;
+//      stages/photon.h), storing their non-specular hits after the first
+//      (direct light is step 1's), in a kd-tree that lives for this pass
+//      only;
 //   3. update, per pixel, with the M photons found within R_i of x:
 //
 //        N_{i+1}   = N_i + alpha M

@@ -57,7 +57,10 @@ struct PhotonSettings {
     int knn = 50;                       ///< --knn: photons per estimate (pm); 0 = fixed radius
     PhotonKernel kernel = PhotonKernel::epanechnikov;  ///< --photon-kernel
     int passes = 16;                    ///< --passes (sppm); 0: one per camera sample (-s)
-    uint64_t photons_per_pass = 100000;  ///< --photons-per-pass (sppm)
+    /// --photons-per-pass (sppm); 0: one per pixel rendered (pbrt-v3's
+    /// default), so that camera and photon work stay in proportion at any
+    /// resolution (docs/photon_mapping.md measures why).
+    uint64_t photons_per_pass = 0;
     double alpha = 2.0 / 3.0;           ///< --alpha: fraction of new photons sppm keeps per pass
     PhotonView view = PhotonView::none;  ///< --photon-view
     int max_bounces = 100;              ///< a photon path's hard cap (Russian roulette ends it sooner)

@@ -147,3 +147,20 @@ TEST_CASE("pm and sppm give the same image at any thread count") {
         CHECK(same_pixels(render_threads(scene, s, kind, 1).image, render_threads(scene, s, kind, 3).image));
     }
 }
+
+TEST_CASE("sppm sizes the sampler by its passes, not by -s") {
+    // Pass i draws camera sample i of every pixel. zsobol packs the sample
+    // index into ceil(log2 spp) bits below the pixel's Morton code: sized
+    // by -s 1, passes 1.. spilled into other pixels' codes and repeated
+    // their samples (render_context.cpp). Sized by the passes, -s does not
+    // change the image.
+    Scene scene = small_cornell();
+    scene.film_width = scene.film_height = 8;
+    RenderSettings s = path_settings(1, 1, 5);
+    s.sampler = SamplerKind::zsobol;
+    s.photon.passes = 8;
+    s.photon.photons_per_pass = 500;
+    const Image one_spp = render_threads(scene, s, IntegratorKind::sppm, 1).image;
+    s.spp = 8;
+    CHECK(same_pixels(one_spp, render_threads(scene, s, IntegratorKind::sppm, 1).image));
+}

@@ -14,8 +14,14 @@
 #include <fstream>
 #include <new>
 
+#include <map>
+#include <tuple>
+
+#include "core/counters.h"
 #include "core/error.h"
+#include "grade/bvh_inputs.h"
 #include "grade/isolation.h"
+#include "grade/random_inputs.h"
 #include "grading_helpers.h"
 
 using namespace pt;
@@ -194,4 +200,90 @@ TEST_CASE("attack: a task that sleeps to the timeout; the submission's budget st
     CHECK(report.tasks[0].message.find("timed out") != std::string::npos);
     for (size_t i = 1; i < 4; ++i)
         CHECK(report.tasks[i].message.find("budget") != std::string::npos);
+}
+
+namespace {
+
+/// part2.5 with fewer timed rays, so that a slow traversal costs the test little.
+TaskSpec quick_performance_task() {
+    TaskSpec spec = task(2, "part2.5");
+    spec.params["timed_rays"] = 2000;
+    spec.params["max_timed_seconds"] = 0.5;
+    return spec;
+}
+
+using RayKey = std::tuple<double, double, double, double, double, double>;
+RayKey key(const Ray& r) { return {r.o.x, r.o.y, r.o.z, r.d.x, r.d.y, r.d.z}; }
+std::map<RayKey, std::optional<Hit>> g_answers;
+
+/// The reference tree, after computing (by brute force, outside any timed
+/// loop) the closest hit of every ray the check will time: the seed and the
+/// ray generator are public, as they are to a student.
+std::unique_ptr<BVHNode> construct_and_precompute(std::vector<BVHPrimitive>& p, size_t start,
+                                                  size_t end, size_t max_leaf) {
+    if (g_answers.empty()) {
+        GradeEnvironment env = environment(reference_stages(), 1);
+        Scene scene = load_graded_scene(env, "scenes/cbox_knot.json");
+        Rng rng = check_rng(1, "bvh_performance");
+        std::unique_ptr<Accelerator> scan = make_linear_scan(scene, reference_stages().intersect);
+        for (const Ray& r : scene_rays(scene, reference_stages(), 2000, rng))
+            g_answers[key(r)] = scan->intersect(r);
+    }
+    return reference::construct_bvh(p, start, end, max_leaf);
+}
+
+/// Answers from the table: no box or primitive test while it is timed.
+std::optional<Hit> traverse_from_table(const BVHTree& bvh, const Ray& ray, const BVHNode* node) {
+    auto it = g_answers.find(key(ray));
+    return it != g_answers.end() ? it->second : reference::bvh_intersect(bvh, ray, node);
+}
+
+/// Tests every primitive under the node (never prunes), then rewinds the
+/// counters that the runner used to read, so that it claims no work.
+std::optional<Hit> traverse_all_and_rewind(const BVHTree& bvh, const Ray& ray,
+                                           const BVHNode* node) {
+    const RayCounters before = thread_counters();
+    std::optional<Hit> best;
+    for (size_t i = 0; i < bvh.primitives.size(); ++i) {
+        std::optional<Hit> hit = bvh.intersect_primitive(i, ray);
+        if (hit && BVHTree::closer(*hit, best)) best = hit;
+    }
+    thread_counters() = before;
+    (void)node;
+    return best;
+}
+
+}  // namespace
+
+TEST_CASE("attack: part2.5's speed and counts cannot be forged inside the runner") {
+    // Before the grader measured them itself, the runner timed the student's
+    // traversal and read its counters: a table of precomputed answers made
+    // the timed loop free (0 tests per ray), and a traversal that rewinds
+    // the counters claimed no primitive tests. Now the counts come from the
+    // grader's own traversal of the recorded tree and the time is the
+    // runner's CPU time as the kernel counted it, precomputation included.
+    Stages s = reference_stages();
+    s.bvh.tree.construct_bvh = construct_and_precompute;
+    s.bvh.tree.bvh_intersect = traverse_from_table;
+    TaskResult t = grade_task_isolated(quick_performance_task(), environment(s, 1), 60);
+    INFO(t.message);
+    CHECK(t.status == TaskStatus::fail);
+    CHECK(t.message.find("speedup") != std::string::npos);
+    CHECK(t.message.find("counted by the kernel") != std::string::npos);
+    CHECK(t.value > 1);  // the grader's count on the reference tree, not the table's 0
+
+    s.bvh.tree.construct_bvh = reference::construct_bvh;
+    s.bvh.tree.bvh_intersect = traverse_all_and_rewind;
+    TaskResult u = grade_task_isolated(quick_performance_task(), environment(s, 1), 60);
+    INFO(u.message);
+    CHECK(u.status == TaskStatus::fail);
+    CHECK(u.message.find("speedup") != std::string::npos);
+    CHECK(u.value == t.value);  // the same tree: the same count, whatever the traversal claims
+
+    // The honest reference passes the same task through the same path.
+    TaskResult honest =
+        grade_task_isolated(quick_performance_task(), environment(reference_stages(), 1), 60);
+    INFO(honest.message);
+    CHECK(honest.status == TaskStatus::pass);
+    CHECK(honest.value == t.value);
 }

@@ -78,7 +78,7 @@ const std::vector<Technique>& all_techniques() {
          [](TechniqueConfig& c) { c.settings.integrator = IntegratorKind::bdpt; }},
         {"pm", "photon mapping (--integrator pm, 200000 + 200000 photons): biased, error floor", "path",
          [](TechniqueConfig& c) { c.settings.integrator = IntegratorKind::pm; }},
-        {"sppm", "progressive photon mapping (--integrator sppm), one pass of 100000 photons per spp", "path",
+        {"sppm", "progressive photon mapping (--integrator sppm), one pass per spp, one photon per pixel per pass", "path",
          [](TechniqueConfig& c) { c.settings.integrator = IntegratorKind::sppm; }},
         {"sampler-independent", "--sampler independent: PCG32 per (seed, pixel, sample)", "light",
          use_sampler<SamplerKind::independent>, false, -1, -1},

@@ -361,7 +361,7 @@ void print_tables(const std::vector<SceneResult>& results, int width, int height
     }
     std::cout << k.markdown();
     std::cout << "\n### Builds (1 thread; M tri/s = million triangles per second) and memory\n\n";
-    std::vector<std::string> build_header = {"scene", "triangles", "BVH4 Mtri/s", "BVH2 Mtri/s",
+    std::vector<std::string> build_header = {"scene", "triangles", "BVH Mtri/s", "BVH2 Mtri/s",
                                              "kd-tree Mtri/s", "grid Mtri/s", "kd-tree B/tri", "grid B/tri"};
     if (embree) build_header.push_back("Embree Mtri/s");
     Table b(build_header, 2);
