@@ -74,7 +74,7 @@ size_t knn_search(const KdTree& tree, const Vec3& p, size_t k, double bound, Can
     // the back (the farthest drops out once k are held); the bound then
     // becomes the k-th distance.
     auto consider = [&](double dist2, uint32_t at) {
-        if (dist2 > bound) return;
+        if (!(dist2 <= bound)) return;  // written so that a NaN distance is never kept
         size_t i = count < k ? count++ : k - 1;
         for (; i > 0 && best[i - 1].dist2 > dist2; --i) best[i] = best[i - 1];
         best[i] = {dist2, at};

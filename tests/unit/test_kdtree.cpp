@@ -6,6 +6,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "core/rng.h"
@@ -100,6 +101,9 @@ TEST_CASE("kd-tree edge arguments: k = 0, radius 0, negative radius") {
     CHECK(found.empty());
     reference::k_nearest(tree, Vec3(0), 2, 0.0, found);
     CHECK(found.size() == 2);
+    // A NaN query point is at no distance <= max_dist2 (as for brute force): none.
+    reference::k_nearest(tree, Vec3(std::nan(""), 0, 0), 2, 1e300, found);
+    CHECK(found.empty());
 }
 
 TEST_CASE("kdtree_is_valid rejects a broken layout") {
