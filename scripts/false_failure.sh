@@ -45,6 +45,7 @@ all_groups=(
   "sky41|4|part4.1|mirror, glass and sky|0"
   "sky42|4|part4.2|sky|0"
   "mis38|3|part3.8|a mirror, rough gold|0"
+  "pane38|3|part3.8|frosted-glass pane|0"
   "gold41|4|part4.1|rough gold and frosted glass|0"
   "fog95|9|part9.5||0"
 )

@@ -328,6 +328,13 @@ int run_class(const GradeOptions& o) {
     run.tools = ClassBuildTools{PT_CMAKE_COMMAND, PT_CMAKE_GENERATOR, PT_CLASS_PROJECT_DIR,
                                 PT_CLASS_INITIAL_CACHE, PT_DEFAULT_ASSIGNMENTS_DIR,
                                 std::max(1, hw / jobs), o.build_timeout};
+    // What a sandboxed compile reads besides the submission: the project's
+    // headers and CMake files, the main build's trusted objects.
+    const fs::path source = fs::path(PT_CLASS_PROJECT_DIR).parent_path().parent_path();
+    const fs::path main_build = fs::path(PT_CLASS_INITIAL_CACHE).parent_path().parent_path();
+    run.tools.sandbox = o.sandbox;
+    run.tools.readable = {(source / "src").string(), (source / "cmake").string(),
+                          (main_build / "src").string(), (main_build / "grade_class").string()};
     run.child_threads = o.threads_given ? o.threads : std::max(1, hw / jobs);
     run.grade_exe = self_exe();
     run.progress = isatty(2) != 0 && !o.quiet;  // as the renderers' progress bar

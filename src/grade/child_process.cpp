@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/prctl.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -14,8 +15,19 @@
 
 namespace pt {
 
+namespace {
+
+/// setrlimit is async-signal-safe: callable between fork and exec.
+void limit(int resource, double value) {
+    if (!(value > 0)) return;
+    rlimit r{rlim_t(value), rlim_t(value)};
+    setrlimit(resource, &r);
+}
+
+}  // namespace
+
 ChildOutcome run_child(const std::vector<std::string>& argv, const std::string& log_path,
-                       double timeout) {
+                       double timeout, const ChildLimits& limits) {
     ChildOutcome out;
     if (argv.empty()) return out;
     // Everything the child needs is prepared before fork: between fork and
@@ -39,10 +51,13 @@ ChildOutcome run_child(const std::vector<std::string>& argv, const std::string& 
         setpgid(0, 0);
         prctl(PR_SET_PDEATHSIG, SIGKILL);  // a killed `grade --class` leaves no build behind
         if (getppid() != parent) _exit(127);
+        limit(RLIMIT_AS, limits.memory_bytes);
+        limit(RLIMIT_FSIZE, limits.file_bytes);
+        limit(RLIMIT_CPU, limits.cpu_seconds);
         dup2(null_in, 0);
         dup2(log, 1);
         dup2(log, 2);
-        execv(args[0], args.data());
+        execvp(args[0], args.data());  // a path, or a name on PATH (bwrap)
         _exit(127);
     }
     close(null_in);

@@ -6,6 +6,7 @@
 
 #include "core/timer.h"
 #include "grade/child_process.h"
+#include "grade/sandbox.h"
 
 namespace fs = std::filesystem;
 
@@ -41,6 +42,7 @@ std::string first_build_error(const std::string& log, const std::vector<std::str
     std::string line, found;
     while (std::getline(in, line)) {
         if (line.find("error:") != std::string::npos ||
+            line.find("out of memory") != std::string::npos ||
             line.find("undefined reference") != std::string::npos ||
             line.find("multiple definition") != std::string::npos ||
             line.rfind("CMake Error", 0) == 0) {
@@ -98,11 +100,29 @@ ClassBuildResult build_submission(const ClassBuildTools& tools, const std::strin
         r.seconds = timer.seconds();
         return r;
     }
-    ChildOutcome b = run_child({tools.cmake, "--build", work_dir, "--parallel",
-                                std::to_string(std::max(1, tools.jobs))},
-                               log_path, tools.timeout);
+    // The compile reads the student's sources: sandboxed and limited. The
+    // configure step above reads only their names.
+    std::vector<std::string> build = build_sandbox_prefix(
+        [&] {
+            std::vector<std::string> r = tools.readable;
+            r.insert(r.end(), {tools.project_dir, tools.handout_dir, s.dir});
+            return r;
+        }(),
+        {work_dir}, tools.sandbox);
+    r.sandboxed = !build.empty();
+    for (const std::string& a : {tools.cmake, std::string("--build"), work_dir, std::string("--parallel"),
+                                 std::to_string(std::max(1, tools.jobs))})
+        build.push_back(a);
+    ChildOutcome b = run_child(build, log_path, tools.timeout, tools.limits);
     if (b.exit_code != 0) {
         std::string e = first_build_error(read_text(log_path, 8 << 20), strip);
+        if (e.find("out of memory") != std::string::npos)
+            e += " (each compiler process may use " +
+                 std::to_string(long(tools.limits.memory_bytes / 1e9)) + " GB)";
+        if (e.find("Killed signal") != std::string::npos ||
+            e.find("CPU time limit") != std::string::npos)
+            e += " (each compiler process may use " +
+                 std::to_string(long(tools.limits.cpu_seconds)) + " s of CPU time)";
         r.first_error = e.empty() ? why(b, "the build", tools.timeout) : e;
         r.internal = e.empty() && !b.timed_out;  // a compile that never ends is the student's
         r.seconds = timer.seconds();

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "grade/child_process.h"
 #include "grade/submission.h"
 
 namespace pt {
@@ -23,6 +24,15 @@ struct ClassBuildTools {
     std::string handout_dir;    ///< the project's assignments/: the stubs
     int jobs = 1;               ///< compiler processes per build
     double timeout = 600;       ///< seconds per configure and per build
+    /// The compile of the student's sources runs inside bubblewrap where it
+    /// can (sandbox.h build_sandbox_prefix), reading only these folders
+    /// (the project's sources, the main build), the submission and the
+    /// system, writing only its build folder; false: limits only.
+    bool sandbox = true;
+    std::vector<std::string> readable;
+    /// Per compiler process: a source that includes /dev/zero or
+    /// instantiates without end fails its build with the reason.
+    ChildLimits limits{4e9, 1e9, 120};
 };
 
 struct ClassBuildResult {
@@ -32,6 +42,7 @@ struct ClassBuildResult {
     bool internal = false;
     std::string first_error;  ///< the compiler's (or linker's) first error, paths made relative
     std::string runner_dir;   ///< where grade_runner_KEY are, when ok
+    bool sandboxed = false;   ///< the compile ran inside bubblewrap
     double seconds = 0;
 };
 

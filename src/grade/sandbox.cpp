@@ -28,7 +28,46 @@ bool runs(const std::vector<std::string>& argv) {
     return WIFEXITED(status) && WEXITSTATUS(status) == 0;
 }
 
+/// bwrap's namespaces and the read-only system every sandbox needs.
+std::vector<std::string> base_prefix() {
+    return {"bwrap", "--unshare-pid", "--unshare-net", "--unshare-ipc",
+            "--unshare-uts", "--die-with-parent", "--ro-bind", "/usr",
+            "/usr", "--ro-bind-try", "/lib", "/lib", "--ro-bind-try",
+            "/lib64", "/lib64", "--ro-bind-try", "/bin", "/bin",
+            "--ro-bind-try", "/etc/ld.so.cache", "/etc/ld.so.cache",
+            "--proc", "/proc", "--dev", "/dev", "--tmpfs", "/tmp"};
+}
+
+/// Appends `--BIND path path` for each path that exists (canonical).
+void bind_all(std::vector<std::string>& p, const std::vector<std::string>& paths,
+              const std::string& bind) {
+    for (const std::string& r : paths) {
+        std::error_code ec;
+        std::string path = std::filesystem::weakly_canonical(r, ec).string();
+        if (ec || path.empty() || !std::filesystem::exists(path, ec)) continue;
+        p.insert(p.end(), {bind, path, path});
+    }
+}
+
 }  // namespace
+
+std::vector<std::string> build_sandbox_prefix(const std::vector<std::string>& readable,
+                                              const std::vector<std::string>& writable,
+                                              bool use_bwrap) {
+    static const bool bwrap_runs = [] {
+        std::vector<std::string> probe = base_prefix();
+        probe.insert(probe.end(), {"--", "/bin/true"});
+        return runs(probe);
+    }();
+    if (!use_bwrap || !bwrap_runs) return {};
+    std::vector<std::string> p = base_prefix();
+    p.insert(p.end(), {"--ro-bind-try", "/etc/alternatives", "/etc/alternatives", "--setenv",
+                       "CCACHE_DISABLE", "1"});
+    bind_all(p, readable, "--ro-bind");
+    bind_all(p, writable, "--bind");
+    p.push_back("--");
+    return p;
+}
 
 Sandbox make_sandbox(const std::vector<std::string>& readable, bool use_bwrap) {
     Sandbox s;
@@ -38,19 +77,9 @@ Sandbox make_sandbox(const std::vector<std::string>& readable, bool use_bwrap) {
         s.description = limits + " (bubblewrap switched off: --no-sandbox)";
         return s;
     }
-    std::vector<std::string> p = {"bwrap", "--unshare-pid", "--unshare-net", "--unshare-ipc",
-                                  "--unshare-uts", "--die-with-parent", "--ro-bind", "/usr",
-                                  "/usr", "--ro-bind-try", "/lib", "/lib", "--ro-bind-try",
-                                  "/lib64", "/lib64", "--ro-bind-try", "/bin", "/bin",
-                                  "--ro-bind-try", "/etc/ld.so.cache", "/etc/ld.so.cache",
-                                  "--proc", "/proc", "--dev", "/dev", "--tmpfs", "/tmp",
-                                  "--chdir", "/tmp"};
-    for (const std::string& r : readable) {
-        std::error_code ec;
-        std::string path = std::filesystem::weakly_canonical(r, ec).string();
-        if (ec || path.empty()) continue;
-        p.insert(p.end(), {"--ro-bind", path, path});
-    }
+    std::vector<std::string> p = base_prefix();
+    p.insert(p.end(), {"--chdir", "/tmp"});
+    bind_all(p, readable, "--ro-bind");
     std::vector<std::string> probe = p;
     probe.insert(probe.end(), {"--", "/bin/true"});
     if (!runs(probe)) {

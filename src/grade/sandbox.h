@@ -22,4 +22,15 @@ struct Sandbox {
 /// description saying why. `use_bwrap` false: the fallback on purpose.
 Sandbox make_sandbox(const std::vector<std::string>& readable, bool use_bwrap);
 
+/// The sandbox of a compile of student sources (grade --class): the same
+/// namespaces, the system (and /etc/alternatives, where the compiler's
+/// name points) and `readable` bound read-only, `writable` (the build
+/// folder) read-write, an empty /tmp and no ccache (its cache is outside).
+/// A source that includes a file the grader can read (/etc/..., another
+/// student's folder, the reports) then fails to compile. An empty prefix
+/// where bwrap cannot run (or `use_bwrap` is false).
+std::vector<std::string> build_sandbox_prefix(const std::vector<std::string>& readable,
+                                              const std::vector<std::string>& writable,
+                                              bool use_bwrap);
+
 }  // namespace pt

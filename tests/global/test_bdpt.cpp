@@ -11,7 +11,9 @@
 //    Le (1 - rho^(m+1)) / (1 - rho), -o 0 gives Le rho^m, no cap Le / (1 - rho);
 //    both heuristics, with and without roulette;
 //  - the Cornell box: BDPT's image has the path tracer's mean, -m 1 to 3
-//    (power: a 15% bias, 16x16 pixels; the strategies alone: 30%);
+//    (power: a 15% bias, 16x16 pixels; the strategies alone: 30%); the
+//    Cornell box and the materials scene (glass, mirror, metals) at -m 4
+//    and 5, with and without roulette;
 //  - each strategy alone (unweighted) estimates the whole image of its
 //    path length, as the path tracer's -o 0 image; the weighted strategy
 //    images sum to BDPT's image;
@@ -128,6 +130,33 @@ TEST_CASE("bdpt: the Cornell box has the path tracer's mean, -m 1 to 3") {
         RenderResult bdpt = render_bdpt(scene, path_settings(m, 256, 400 + m));
         CHECK(bdpt.counters.nonfinite_samples == 0);
         check_same_mean(path.image, bdpt.image, 0.15);
+    }
+}
+
+TEST_CASE("bdpt: the Cornell box and the materials scene have the path tracer's mean, -m 4 and 5, roulette on and off") {
+    // Issue 18's longer paths, and the materials scene's glass, mirror and
+    // rough metals in both subpaths, its sky as the environment light;
+    // 16x16 pixels, fixed seeds, |z| <= 4 (power: a 20% bias, the longer
+    // paths being noisier than at -m 1 to 3).
+    Scene materials = load_scene(std::string(PT_SOURCE_DIR) + "/assets/scenes/materials.json");
+    materials.film_width = materials.film_height = 16;
+    const Scene scenes[] = {cornell_box(16), materials};
+    for (size_t k = 0; k < 2; ++k) {
+        for (int m : {4, 5}) {
+            for (bool roulette : {true, false}) {
+                CAPTURE(k);
+                CAPTURE(m);
+                CAPTURE(roulette);
+                RenderSettings path_s = path_settings(m, 1024, 700 + 10 * k + m);
+                RenderSettings bdpt_s = path_settings(m, 256, 800 + 10 * k + m);
+                path_s.russian_roulette = bdpt_s.russian_roulette = roulette;
+                if (roulette) path_s.rr_depth = bdpt_s.rr_depth = 1;  // roulette from the first bounce on
+                RenderResult path = render(scenes[k], path_s);
+                RenderResult bdpt = render_bdpt(scenes[k], bdpt_s);
+                CHECK(bdpt.counters.nonfinite_samples == 0);
+                check_same_mean(path.image, bdpt.image, 0.2);
+            }
+        }
     }
 }
 

@@ -19,6 +19,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "grade/sandbox.h"
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -152,4 +154,62 @@ TEST_CASE("grade --class and --merge: bad arguments are one line and exit 2") {
         CHECK_MESSAGE(lines(output).size() == 1, args << ": " << output);
         CHECK_MESSAGE(output.rfind("grade: error: ", 0) == 0, args << ": " << output);
     }
+}
+
+TEST_CASE("scripts/gradescope/run_autograder: an upload in either layout gives results.json") {
+    // Gradescope's layout in a temporary root: submission/ holds part 1's
+    // files side by side, part2/bvh.cpp in its folder and a stray file.
+    const std::string src = PT_SOURCE_DIR, solution = src + "/tests/grading/solution";
+    const std::string root = kRoot + "/autograder";
+    fs::remove_all(root);
+    fs::create_directories(root + "/submission/part2");
+    fs::copy(solution + "/part1/camera.cpp", root + "/submission/camera.cpp");
+    fs::copy(solution + "/part1/intersect.cpp", root + "/submission/intersect.cpp");
+    fs::copy(solution + "/part2/bvh.cpp", root + "/submission/part2/bvh.cpp");
+    std::ofstream(root + "/submission/notes.txt") << "not a handout file\n";
+    const std::string run = "PT_AUTOGRADER_ROOT='" + root + "' PT_GRADE='" + PT_BIN_DIR +
+                            "/grade' PT_GRADE_ARGS='--task " + kTasks + " --build-dir " + kRoot +
+                            "/work' " + src + "/scripts/gradescope/run_autograder";
+    REQUIRE(std::system((run + " > " + root + "/log.txt 2>&1").c_str()) == 0);
+    nlohmann::json r = nlohmann::json::parse(slurp(root + "/results/results.json"));
+    CHECK(r["score"].get<double>() == 70);
+    REQUIRE(r["tests"].size() == 3);
+    CHECK(r["tests"][2]["number"] == "part2.2");
+
+    // An upload without any handout file: a score of 0 that says why.
+    fs::remove_all(root + "/submission");
+    fs::create_directories(root + "/submission");
+    std::ofstream(root + "/submission/notes.txt") << "nothing\n";
+    REQUIRE(std::system((run + " > " + root + "/log.txt 2>&1").c_str()) == 0);
+    r = nlohmann::json::parse(slurp(root + "/results/results.json"));
+    CHECK(r["score"].get<double>() == 0);
+    CHECK(r["output"].get<std::string>().find("none of the handout's files") != std::string::npos);
+}
+
+TEST_CASE("grade --class: a hostile compile fails that student's build with its reason") {
+    // erin includes /dev/zero (the compiler reads without end: the memory
+    // limit stops it); frank includes a file of the grader's (the sandbox
+    // does not have it; outside bubblewrap the compiler would quote it).
+    const std::string src = PT_SOURCE_DIR, dir = kRoot + "/hostile";
+    fs::remove_all(dir);
+    for (const char* name : {"erin", "frank"}) {
+        fs::create_directories(dir + "/" + name + "/part1");
+        for (const char* f : {"camera.cpp", "intersect.cpp"})
+            fs::copy(src + "/assignments/part1/" + f, dir + "/" + name + "/part1/" + f);
+    }
+    std::ofstream(dir + "/erin/part1/camera.cpp", std::ios::app) << "\n#include \"/dev/zero\"\n";
+    std::ofstream(dir + "/frank/part1/camera.cpp", std::ios::app) << "\n#include \"/etc/hostname\"\n";
+    std::string output;
+    const int code = grade("--class " + dir + " --out " + kRoot + "/hostile_out --task part1.1 --build-dir " +
+                               kRoot + "/work -q",
+                           &output);
+    REQUIRE_MESSAGE(code == 0, output);
+    const std::vector<std::string> rows = lines(slurp(kRoot + "/hostile_out/gradebook.csv"));
+    REQUIRE(rows.size() == 3);
+    INFO(rows[1] << "\n" << rows[2]);
+    CHECK(rows[1].rfind("erin,0,0,25,does not compile,", 0) == 0);
+    CHECK(rows[1].find("out of memory") != std::string::npos);
+    CHECK(rows[2].rfind("frank,0,0,25,does not compile,", 0) == 0);
+    if (!pt::build_sandbox_prefix({}, {}, true).empty())
+        CHECK(rows[2].find("/etc/hostname: No such file or directory") != std::string::npos);
 }
