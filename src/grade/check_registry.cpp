@@ -52,6 +52,12 @@ const std::vector<CheckInfo>& all_checks() {
          {"scenes", "rays", "max_leaf", "rel_tol", "max_mismatches", "families"},
          "the student's any-hit traversal (shadow rays) of a reference-built tree against brute "
          "force"},
+        {"grid_intersect",
+         TaskType::function,
+         check_grid_intersect,
+         {"scenes", "rays", "rel_tol", "max_mismatches", "families"},
+         "the student's 3D-DDA walk of a reference-built uniform grid against brute force: "
+         "axis-aligned, parallel to faces, along cell boundaries, through corners, inside and outside"},
         {"bvh_performance",
          TaskType::performance,
          check_bvh_performance,

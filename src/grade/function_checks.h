@@ -58,6 +58,12 @@ TaskResult check_bbox_intersect(const TaskSpec& spec, const GradeEnvironment& en
 TaskResult check_bvh_intersect(const TaskSpec& spec, const GradeEnvironment& env);
 TaskResult check_bvh_has_intersection(const TaskSpec& spec, const GradeEnvironment& env);
 
+/// Part 2, grid_intersect (optional task 6): the student's 3D-DDA walk of a
+/// reference-built uniform grid against brute force, on axis-aligned rays,
+/// rays parallel to faces, along cell boundaries, through cell corners,
+/// from inside and outside the grid.
+TaskResult check_grid_intersect(const TaskSpec& spec, const GradeEnvironment& env);
+
 /// Part 3, diffuse_f: albedo / pi for wi above the surface, black below;
 /// either on the horizon (|wi.z| <= edge_band).
 TaskResult check_diffuse_f(const TaskSpec& spec, const GradeEnvironment& env);

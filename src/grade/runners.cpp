@@ -27,6 +27,7 @@ const std::vector<Runner>& runners() {
         {"bvh_has_intersection", {"bvh.bvh_has_intersection"}},
         {"bvh", {"bvh.construct_bvh", "bvh.bbox_intersect", "bvh.bvh_intersect",
                  "bvh.bvh_has_intersection"}},
+        {"grid_intersect", {"bvh.grid_intersect"}},
         {"has_converged", {"adaptive.has_converged"}},
         {"diffuse_f", {"direct.diffuse_f"}},
         {"diffuse_sample_f", {"direct.diffuse_sample_f"}},

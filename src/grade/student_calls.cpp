@@ -523,6 +523,7 @@ PT_ACCESS(intersect_triangle, intersect.intersect_triangle)
 PT_ACCESS(intersect_sphere, intersect.intersect_sphere)
 PT_ACCESS(bvh_intersect, bvh.tree.bvh_intersect)
 PT_ACCESS(bvh_has_intersection, bvh.tree.bvh_has_intersection)
+PT_ACCESS(grid_intersect, bvh.grid_intersect)
 PT_ACCESS(has_converged, adaptive.has_converged)
 PT_ACCESS(diffuse_f, direct.diffuse_f)
 PT_ACCESS(diffuse_sample_f, direct.diffuse_sample_f)
@@ -613,6 +614,7 @@ const SlotEntry kSlots[] = {
      }},
     PT_SLOT(33, bdpt, connect),
     PT_SLOT(34, bdpt, mis_weight),
+    PT_SLOT(35, bvh, grid_intersect),
 };
 
 #undef PT_SLOT

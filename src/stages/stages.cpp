@@ -36,9 +36,9 @@ Stages make_stages(StageSet student, TriangleTest triangle_test) {
                        reference::intersect_sphere};
     }
     if (student.contains(Stage::bvh)) {
-        s.bvh = {build_student_bvh, student::tree_functions()};
+        s.bvh = {build_student_bvh, student::tree_functions(), student::grid_intersect};
     } else {
-        s.bvh = {make_reference_bvh, reference::tree_functions()};
+        s.bvh = {make_reference_bvh, reference::tree_functions(), reference::grid_intersect};
     }
     s.adaptive = {student.contains(Stage::adaptive) ? student::has_converged : reference::has_converged};
     if (student.contains(Stage::direct)) {
@@ -128,7 +128,7 @@ std::unique_ptr<Accelerator> build_accelerator(const Scene& scene, const Stages&
             own = make_linear_scan(scene, stages.intersect);
             break;
         case AccelKind::grid:
-            own = make_uniform_grid(scene, stages.intersect);
+            own = make_uniform_grid(scene, stages.intersect, stages.bvh.grid_intersect);
             break;
         case AccelKind::kdtree:
             own = make_kd_tree(scene, stages.intersect);

@@ -13,6 +13,7 @@
 #include "stages/accelerator.h"
 #include "stages/adaptive.h"
 #include "stages/bvh.h"
+#include "stages/uniform_grid.h"
 #include "stages/camera.h"
 #include "stages/direct.h"
 #include "stages/global.h"
@@ -66,6 +67,9 @@ struct BvhStage {
     /// one by one: the grader builds and queries student-style trees with
     /// them (make_tree_bvh), so that each is graded on its own.
     BvhFunctions tree;
+    /// Part 2's optional task 6: the grid's closest-hit walk, used by
+    /// `--accel grid` (stages/uniform_grid.h).
+    GridIntersectFn grid_intersect = reference::grid_intersect;
 };
 
 struct Stages {

@@ -80,3 +80,49 @@ TEST_CASE("--accel names every structure; embree only where built in") {
     embree.kind = AccelKind::embree;
     if (!embree_available()) CHECK_THROWS_AS(build_accelerator(scene, stages, embree), InputError);
 }
+
+namespace {
+int g_grid_calls = 0;
+std::optional<Hit> counting_grid_intersect(const GridCells& grid, const Ray& ray) {
+    ++g_grid_calls;
+    return reference::grid_intersect(grid, ray);
+}
+}  // namespace
+
+TEST_CASE("--accel grid walks with the bvh stage's grid_intersect (Part 2's optional task 6)") {
+    Scene scene = test::knot_scene(20, 4);
+    Stages stages = make_stages(StageSet{});
+    CHECK((stages.bvh.grid_intersect == &reference::grid_intersect));
+    CHECK((make_stages(StageSet::of_part(2)).bvh.grid_intersect == &student::grid_intersect));
+    stages.bvh.grid_intersect = counting_grid_intersect;
+    AcceleratorSettings settings;
+    settings.kind = AccelKind::grid;
+    std::unique_ptr<Accelerator> grid = build_accelerator(scene, stages, settings);
+    std::vector<Ray> rays = test::test_rays(scene, 200, 5);
+    Expected expected = linear_answers(scene, rays);
+    check_agrees(*grid, rays, expected);
+    CHECK(g_grid_calls >= 200);
+
+    // What the student's walk reads: every primitive listed in some cell,
+    // nothing outside the cells.
+    GridCells cells(scene, kReference);
+    std::vector<bool> listed(cells.primitive_count(), false);
+    for (int z = 0; z < cells.res[2]; ++z)
+        for (int y = 0; y < cells.res[1]; ++y)
+            for (int x = 0; x < cells.res[0]; ++x) {
+                size_t n = 0;
+                const uint32_t* p = cells.cell_primitives(x, y, z, n);
+                for (size_t i = 0; i < n; ++i)
+                    listed.at(p[i]) = true;
+            }
+    CHECK(std::count(listed.begin(), listed.end(), false) == 0);
+    size_t n = 7;
+    CHECK(cells.cell_primitives(cells.res[0], 0, 0, n) == nullptr);
+    CHECK(n == 0);
+}
+
+TEST_CASE("student stubs: grid_intersect says it is not implemented") {
+    Scene scene = test::knot_scene(20, 4);
+    GridCells cells(scene, kReference);
+    CHECK_THROWS_AS(student::grid_intersect(cells, Ray(Vec3(0, 0, -10), Vec3(0, 0, 1))), NotImplemented);
+}

@@ -33,7 +33,7 @@ std::string trimmed(const std::string& s) {
 
 bool is_comment(const std::string& line) { return trimmed(line).rfind("//", 0) == 0; }
 
-const char* kStubs[] = {"part1/camera.cpp", "part1/intersect.cpp", "part2/bvh.cpp",   "part3/bsdf.cpp",
+const char* kStubs[] = {"part1/camera.cpp", "part1/intersect.cpp", "part2/bvh.cpp",   "part2/grid.cpp", "part3/bsdf.cpp",
                         "part3/direct.cpp", "part3/mis.cpp",      "part4/global.cpp", "part5/adaptive.cpp",
                         "part6/sampler.cpp", "part7/bdpt.cpp", "part8/photon.cpp", "part9/media.cpp"};
 

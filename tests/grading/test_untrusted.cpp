@@ -115,6 +115,7 @@ TEST_CASE("the binaries: grade holds no student code; a runner no reference of w
         {"construct_bvh", "pt::reference::construct_bvh("},
         {"bbox_intersect", "pt::reference::bbox_intersect("},
         {"bbox_intersect", "pt::reference::bvh_intersect("},
+        {"grid_intersect", "pt::reference::grid_intersect("},
         {"estimate_direct_lighting_hemisphere", "pt::reference::one_bounce_radiance("},
         {"zero_bounce_radiance", "pt::reference::estimate_direct_lighting_hemisphere("},
         {"has_converged", "pt::reference::has_converged("},

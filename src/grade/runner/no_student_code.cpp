@@ -29,6 +29,7 @@ std::optional<Hit> bvh_intersect(const BVHTree&, const Ray&, const BVHNode*) {
 bool bvh_has_intersection(const BVHTree&, const Ray&, const BVHNode*) {
     absent("bvh_has_intersection");
 }
+std::optional<Hit> grid_intersect(const GridCells&, const Ray&) { absent("grid_intersect"); }
 bool has_converged(const PixelStatistics&, double) { absent("has_converged"); }
 Color diffuse_f(const Color&, const Vec3&, const Vec3&) { absent("diffuse_f"); }
 BSDFSample diffuse_sample_f(const Color&, const Vec3&, Vec2) { absent("diffuse_sample_f"); }

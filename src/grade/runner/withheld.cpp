@@ -51,6 +51,9 @@ bool bvh_has_intersection(const BVHTree&, const Ray&, const BVHNode*) {
     withheld("bvh_has_intersection");
 }
 #endif
+#ifdef PT_WITHHOLD_GRID_INTERSECT
+std::optional<Hit> grid_intersect(const GridCells&, const Ray&) { withheld("grid_intersect"); }
+#endif
 #ifdef PT_WITHHOLD_HAS_CONVERGED
 bool has_converged(const PixelStatistics&, double) { withheld("has_converged"); }
 #endif
