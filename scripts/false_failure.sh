@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# False-failure rate of the grading cases added by issue 15: the reference
+# False-failure rate of the grading cases added by issue 15 (and of Part 9's
+# image task): the reference
 # graded as the student on many seeds, each case's failures counted
 # (docs/grading.md, "Measured false-failure rate and power").
 #
