@@ -17,6 +17,7 @@
 //                the area density cos cos / (pi d^2) integrated over each
 //                cell (midpoint rule, 16 x 16 points: the densities are
 //                smooth there); chi-square at the manifest's significance.
+//                And max_vertices 0 (the light subpath of -m 0) adds nothing.
 //   connect      every strategy (s, t) of reference subpaths (the Cornell
 //                box with its blocks, and the light bulb: a point light in
 //                a glass sphere, so delta vertices and blocked connections)
@@ -309,6 +310,36 @@ TaskResult check_random_walk(const TaskSpec& spec, const GradeEnvironment& env) 
                 check_walk(*g.context, mode, beta, pdf_dir, max_vertices, added, path, start, ray, rel_tol, log,
                            name + ", " + mode_name(mode) + " walk " + std::to_string(w));
             }
+        }
+    }
+
+    // max_vertices 0: the light subpath of -m 0 (light_subpath passes
+    // max_depth) must stay its light vertex alone; a walk that tests its
+    // limit only after a push adds one.
+    log.category("max_vertices 0 (the light subpath of -m 0): nothing added");
+    {
+        GradedScene g(env, scenes.empty() ? std::string("scenes/cbox.json") : scenes.front(), 0);
+        for (Transport mode : {Transport::radiance, Transport::importance}) {
+            Ray ray;
+            double pdf_dir = 0;
+            Color beta(1.0);
+            PathVertex start;
+            if (mode == Transport::radiance) {
+                start = camera_start(env, g.scene, rng, &ray, &pdf_dir);
+            } else {
+                const std::optional<LightStart> s = light_start(*g.context, rng);
+                if (!s) continue;
+                start = s->y0, ray = s->ray, beta = s->beta, pdf_dir = s->pdf_dir;
+            }
+            std::vector<PathVertex> path{start};
+            Rng walk_rng(env.seed, uint64_t(0), uint64_t(mode == Transport::radiance ? 4 : 5));
+            const int added = env.student.bdpt.random_walk(*g.context, ray, beta, pdf_dir, 0, mode, walk_rng, path);
+            if (added == 0 && path.size() == 1)
+                log.agreed();
+            else
+                log.mismatch(std::string(mode_name(mode)) + " walk with max_vertices 0: returned " +
+                             std::to_string(added) + " and made the path " + std::to_string(path.size()) +
+                             " vertices long (from 1); it must add none");
         }
     }
 

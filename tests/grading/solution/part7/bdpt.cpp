@@ -44,7 +44,7 @@ int random_walk(const RenderContext& context, const Ray& ray, const Color& beta,
         const BSDF& bsdf = *cur.bsdf;
         const Vec3 wo = bsdf.to_local(hit->wo);
         const BSDFSample bs = bsdf.sample_f(wo, rng.next_2d());
-        if (!bs.valid() || bs.f.is_black()) break;
+        if (!bs.valid()) break;
         const Vec3 wi = bsdf.to_world(bs.wi);
         Color weight = bs.f * (std::fabs(bs.wi.z) / bs.pdf);
         if (mode == Transport::importance) {
