@@ -96,7 +96,12 @@ size_t knn_search(const KdTree& tree, const Vec3& p, size_t k, double bound, Can
         for (uint32_t s = 0; s < m; ++s) consider(dist2[inside[s]], lo + inside[s]);
     };
 
-    PendingCell stack[64];  // at most one entry per level, and a level per bit of a 32-bit size
+    // A descent pushes at most one cell per level, and a 32-bit size has
+    // at most 32 levels. Depth-first, the stack holds one path; a
+    // best-first choice leaves older cells below a new descent, so it is
+    // made only while a whole descent still fits.
+    constexpr int kMaxDescent = 32, kStackSize = 128;
+    PendingCell stack[kStackSize];
     int top = 0;
     // The cell being descended, in locals (registers): its range, squared
     // distance from p and per-axis offsets.
@@ -132,6 +137,17 @@ size_t knn_search(const KdTree& tree, const Vec3& p, size_t k, double bound, Can
             }
         }
         scan_bucket(lo, hi);
+        // Until k points are held the bound is infinite and every point
+        // found is kept, so the first k decide how tight the bound starts:
+        // take them from the nearest pending cell (best-first), not from
+        // the last one pushed. Afterwards the stack's order (depth-first,
+        // nearer side first) is as good and costs nothing.
+        if (count < k && top > 1 && top + kMaxDescent <= kStackSize) {
+            int nearest = top - 1;
+            for (int i = top - 2; i >= 0; --i)
+                if (stack[i].dist2 < stack[nearest].dist2) nearest = i;
+            std::swap(stack[nearest], stack[top - 1]);
+        }
         // Back up to the nearest pending cell that can still hold a better
         // point. Its node point lies on its boundary, so it is no nearer
         // than the cell: both are skipped together.
