@@ -55,9 +55,10 @@ const std::vector<CheckInfo>& all_checks() {
         {"grid_intersect",
          TaskType::function,
          check_grid_intersect,
-         {"scenes", "rays", "rel_tol", "max_mismatches", "families"},
+         {"scenes", "rays", "empty_grid_rays", "rel_tol", "max_mismatches", "families"},
          "the student's 3D-DDA walk of a reference-built uniform grid against brute force: "
-         "axis-aligned, parallel to faces, along cell boundaries, through corners, inside and outside"},
+         "axis-aligned, parallel to faces, along cell boundaries, through corners, inside and outside, "
+         "and an empty grid (every ray misses)"},
         {"bvh_performance",
          TaskType::performance,
          check_bvh_performance,
