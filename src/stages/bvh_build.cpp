@@ -140,12 +140,12 @@ struct Binner {
         F4 extent = centroids.hi - centroids.lo;
         for (int a = 0; a < 4; ++a) scale[a] = a < 3 && extent[a] > 0 ? kBins / extent[a] : 0.0f;
     }
-    I4 bins(F4 c) const {
-        F4 x = (c - origin) * scale;
+    /// (c - origin) * scale clamped to [0, kBins - 1] (NaN to 0).
+    F4 position(F4 c) const {
         const F4 zero = {0, 0, 0, 0}, top = {kBins - 1, kBins - 1, kBins - 1, kBins - 1};
-        x = vmin(vmax(x, zero), top);  // NaN -> 0: never converted to int
-        return __builtin_convertvector(x, I4);
+        return vmin(vmax((c - origin) * scale, zero), top);
     }
+    I4 bins(F4 c) const { return __builtin_convertvector(position(c), I4); }
 };
 
 /// float_down and float_up (flat_bvh.h) with a select instead of a branch
@@ -266,12 +266,14 @@ class Builder {
         int best_axis = 0, best_k = 0;
         uint8_t order[3][kSweepBelow];
         for (int a = 0; a < 3; ++a) {
-            // Insertion sort by centroid, ties by position (deterministic).
+            // Sorted by centroid, ties by position, through each one's rank
+            // (how many come before it): no branches, which an insertion
+            // sort's mispredictions made the larger cost here.
             uint8_t* o = order[a];
             for (int i = 0; i < n; ++i) {
-                int j = i;
-                for (; j > 0 && c[o[j - 1]][a] > c[i][a]; --j) o[j] = o[j - 1];
-                o[j] = uint8_t(i);
+                int rank = 0;
+                for (int j = 0; j < n; ++j) rank += (c[j][a] < c[i][a]) | ((c[j][a] == c[i][a]) & (j < i));
+                o[rank] = uint8_t(i);
             }
             double right_area[kSweepBelow];
             Box4 right;
@@ -284,11 +286,10 @@ class Builder {
                 left.expand(p[o[k - 1]].lo, p[o[k - 1]].hi);
                 double cost = kTraversalCost +
                               kIntersectionCost * (left.area() * k + right_area[k] * (n - k)) / parent_area;
-                if (cost < best_cost) {
-                    best_cost = cost;
-                    best_axis = a;
-                    best_k = k;
-                }
+                const bool better = cost < best_cost;  // selects, not a branch
+                best_cost = better ? cost : best_cost;
+                best_axis = better ? a : best_axis;
+                best_k = better ? k : best_k;
             }
         }
         SplitChoice choice;
@@ -417,37 +418,39 @@ class Builder {
         for (int k = 0; k < kBins; ++k) (k < best_plane ? choice.left : choice.right).expand(bins[a][k]);
         PrimRef* lo = prims_.data() + begin;
         PrimRef* hi = prims_.data() + end;
-        Box4& lc = choice.left_centroids;
-        Box4& rc = choice.right_centroids;
-        // The side from the chosen axis alone: scalar float operations give
-        // each lane's result of Binner::bins bit for bit, and for x in
-        // [0, kBins - 1], int(x) < plane exactly when x < plane.
-        const float origin = binner.origin[a], scale = binner.scale[a], plane = float(best_plane);
-        auto left_side = [&](const PrimRef& p) {
-            float c = (p.lo[a] + p.hi[a]) * 0.5f;
-            c = c < FLT_MAX ? c : FLT_MAX;
-            c = c > -FLT_MAX ? c : -FLT_MAX;
-            float x = (c - origin) * scale;
-            x = x > 0.0f ? x : 0.0f;
-            x = x < float(kBins - 1) ? x : float(kBins - 1);
-            return x < plane;
-        };
-        while (true) {
-            while (lo < hi && left_side(*lo)) {
-                lc.expand(centroid(*lo));
-                ++lo;
-            }
-            while (lo < hi && !left_side(*(hi - 1))) {
-                rc.expand(centroid(*(hi - 1)));
-                --hi;
-            }
-            if (lo == hi) break;
-            std::swap(*lo, *(hi - 1));
+        switch (a) {  // the axis as a constant: its lane is read without a trip through memory
+            case 0: lo = partition<0>(lo, hi, binner, best_plane, choice); break;
+            case 1: lo = partition<1>(lo, hi, binner, best_plane, choice); break;
+            default: lo = partition<2>(lo, hi, binner, best_plane, choice); break;
         }
         choice.axis = a;
         choice.mid = size_t(lo - prims_.data());
         choice.boxes_known = true;
         return choice;
+    }
+
+    /// Hoare's partition of [lo, hi) by the bin on axis A (left: below
+    /// `plane`), gathering both sides' centroid boxes; returns the first
+    /// primitive of the right side.
+    template <int A>
+    static PrimRef* partition(PrimRef* lo, PrimRef* hi, const Binner& binner, int plane, SplitChoice& choice) {
+        // Binner::bins without the conversion: for x in [0, kBins - 1],
+        // int(x) < plane exactly when x < plane.
+        const float limit = float(plane);
+        auto side = [&](F4 c) { return binner.position(c)[A] < limit; };
+        while (true) {
+            F4 c;
+            while (lo < hi && side(c = centroid(*lo))) {
+                choice.left_centroids.expand(c);
+                ++lo;
+            }
+            while (lo < hi && !side(c = centroid(*(hi - 1)))) {
+                choice.right_centroids.expand(c);
+                --hi;
+            }
+            if (lo == hi) return lo;
+            std::swap(*lo, *(hi - 1));
+        }
     }
 
     std::vector<PrimRef> prims_;
