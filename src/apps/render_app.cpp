@@ -242,6 +242,7 @@ int run(const std::vector<std::string>& args, const std::string& program, StageS
     render_options.threads = options.threads;
     render_options.show_progress = !options.quiet && Progress::stderr_is_terminal();
     render_options.cell = options.cell;
+    render_options.packets = options.packets;
     RenderResult result = render_image(context, render_options);
     seconds.render = result.seconds;
 
