@@ -85,12 +85,23 @@ PixelResult raytrace_pixel(const RenderContext& context, int x, int y) {
         stats.s2 += illuminance * illuminance;
         ++stats.n;
     };
+    const TracedCameraRays* traced = traced_camera_rays();
     for (int i = 0; n < settings.spp; ++i) {
         // Sample i: its own generator (core/rng.h), so the image does not
         // depend on the thread count or on the order of the pixels (its
         // dimensions: sample_camera_ray).
-        Rng rng = context.sample_generator(x, y, i);
-        Color L = sample_radiance(context, sample_camera_ray(context, x, y, i, rng), rng);
+        // With --packets on the renderer drew the first samples' rays
+        // already (and traced them: render/camera_packets.h).
+        Rng rng;
+        Ray ray;
+        if (traced && size_t(i) < traced->rays.size()) {
+            rng = traced->generators[size_t(i)];
+            ray = traced->rays[size_t(i)];
+        } else {
+            rng = context.sample_generator(x, y, i);
+            ray = sample_camera_ray(context, x, y, i, rng);
+        }
+        Color L = sample_radiance(context, ray, rng);
         sum += L;
         ++averaged;
         ++n;

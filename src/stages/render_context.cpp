@@ -159,6 +159,10 @@ void set_traced_camera_rays(TracedCameraRays* list) {
     t_traced_camera_rays = list;
 }
 
+const TracedCameraRays* traced_camera_rays() {
+    return t_traced_camera_rays;
+}
+
 std::optional<SurfaceInteraction> RenderContext::intersect(const Ray& ray) const {
     ++thread_counters().closest_hit_rays;
     if (TracedCameraRays* traced = t_traced_camera_rays) {

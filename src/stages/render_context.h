@@ -78,7 +78,8 @@ public:
 /// intersect would return, bit for bit), so the image is the same with or
 /// without packets; any other ray is traced as usual.
 struct TracedCameraRays {
-    std::vector<Ray> rays;
+    std::vector<Ray> rays;                 ///< rays[i]: camera ray of sample i of the pixel
+    std::vector<Rng> generators;           ///< sample i's generator after drawing rays[i]
     std::vector<std::optional<Hit>> hits;  ///< hits[i]: accelerator.intersect(rays[i])
     size_t next = 0;                       ///< the first ray not yet asked for
     /// The hit of `ray` when it is the next listed ray or the one after (a
@@ -86,6 +87,7 @@ struct TracedCameraRays {
     const std::optional<Hit>* take(const Ray& ray);
     void clear() {
         rays.clear();
+        generators.clear();
         hits.clear();
         next = 0;
     }
@@ -93,6 +95,9 @@ struct TracedCameraRays {
 
 /// Sets this thread's list of traced camera rays; null: none.
 void set_traced_camera_rays(TracedCameraRays* list);
+/// This thread's list (reference::raytrace_pixel takes its samples' rays
+/// and generators from it rather than drawing them again); null: none.
+const TracedCameraRays* traced_camera_rays();
 
 /// The interaction record for `hit`, found by `ray`: the hit point (from
 /// barycentrics for triangles, re-projected for spheres) with its error
