@@ -4,7 +4,8 @@
 // (two direction components 0, of either sign), rays parallel to a face
 // (one component 0), rays lying in a plane between cells, rays through
 // cell corners (the three crossings tie), origins inside and outside the
-// grid, and ordinary rays through the scene.
+// grid, and ordinary rays through the scene; and the grid of a scene with
+// no primitives (no cells, an empty box), where every ray misses.
 //
 // The classic bugs and the rays that catch them: tMax of a negative step
 // taken at the upper plane (every ray with a negative component); a hit
@@ -123,6 +124,26 @@ std::vector<Case> hard_rays(const GridCells& g, const Scene& scene, const Stages
     return cases;
 }
 
+/// Rays for the empty grid: from the origin and from points up to 10 away,
+/// in random and axis-aligned directions (zero components of either sign),
+/// a third with a finite interval [t_min, t_max].
+std::vector<Ray> empty_grid_rays(int count, Rng& rng) {
+    std::vector<Ray> rays;
+    for (int i = 0; i < count; ++i) {
+        Vec3 o = (rng.next_1d() < 0.25) ? Vec3(0, 0, 0) : 10.0 * random_unit(rng) * rng.next_1d();
+        Vec3 d = random_unit(rng);
+        if (i % 2 == 1) {
+            int a = int(rng.next_index(3));
+            d = Vec3(0.0 * random_sign(rng), 0.0 * random_sign(rng), 0.0 * random_sign(rng));
+            d[a] = random_sign(rng);
+        }
+        Ray r(o, d);
+        if (i % 3 == 2) r.t_min = rng.next_1d(), r.t_max = r.t_min + 10.0 * rng.next_1d();
+        rays.push_back(r);
+    }
+    return rays;
+}
+
 }  // namespace
 
 TaskResult check_grid_intersect(const TaskSpec& spec, const GradeEnvironment& env) {
@@ -150,6 +171,21 @@ TaskResult check_grid_intersect(const TaskSpec& spec, const GradeEnvironment& en
                              hit_text(want) + " (brute force over all " +
                              std::to_string(grid.primitive_count()) + " primitives)");
         }
+    }
+    // A scene without primitives: res 0, an empty box, no cells to walk
+    // (GridCells::empty()). Every ray misses; a walk that clips to the empty
+    // box and then looks up a cell reads outside the grid.
+    const Scene nothing;
+    const GridCells empty(nothing, env.reference.intersect);
+    for (const Ray& r : empty_grid_rays(param(spec, "empty_grid_rays", 50), rng)) {
+        log.category("an empty grid (no primitives: every ray misses)");
+        std::optional<Hit> got = student(empty, r);
+        if (!got)
+            log.agreed();
+        else
+            log.mismatch("the empty grid (a scene without primitives): ray o = " + format_vec(r.o) +
+                         " d = " + format_vec(r.d) + " t_min = " + format_num(r.t_min) + " t_max = " +
+                         format_num(r.t_max) + ": " + hit_text(got) + " instead of a miss");
     }
     return log.finish(spec, param(spec, "max_mismatches", 0), "brute force");
 }
