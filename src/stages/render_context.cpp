@@ -167,6 +167,7 @@ std::optional<SurfaceInteraction> RenderContext::intersect(const Ray& ray) const
     ++thread_counters().closest_hit_rays;
     if (TracedCameraRays* traced = t_traced_camera_rays) {
         if (const std::optional<Hit>* hit = traced->take(ray)) {
+            ++thread_counters().packet_rays;
             if (!*hit) return std::nullopt;
             return make_interaction(scene, ray, **hit);
         }
