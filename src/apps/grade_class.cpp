@@ -25,6 +25,7 @@
 #include "grade/class_build.h"
 #include "grade/gradebook.h"
 #include "grade/gradescope.h"
+#include "grade/header_view.h"
 #include "grade/manifest.h"
 #include "grade/report.h"
 #include "grade/runners.h"
@@ -329,12 +330,16 @@ int run_class(const GradeOptions& o) {
                                 PT_CLASS_INITIAL_CACHE, PT_DEFAULT_ASSIGNMENTS_DIR,
                                 std::max(1, hw / jobs), o.build_timeout};
     // What a sandboxed compile reads besides the submission: the project's
-    // headers and CMake files, the main build's trusted objects.
+    // headers (a copy of them only, bound at src/'s path: header_view.h)
+    // and CMake files, the main build's trusted objects.
     const fs::path source = fs::path(PT_CLASS_PROJECT_DIR).parent_path().parent_path();
     const fs::path main_build = fs::path(PT_CLASS_INITIAL_CACHE).parent_path().parent_path();
     run.tools.sandbox = o.sandbox;
-    run.tools.readable = {(source / "src").string(), (source / "cmake").string(),
-                          (main_build / "src").string(), (main_build / "grade_class").string()};
+    run.tools.readable = {(source / "cmake").string(), (main_build / "src").string(),
+                          (main_build / "grade_class").string()};
+    run.tools.project_src = (source / "src").string();
+    run.tools.header_view = run.build_dir + "/src_headers";
+    make_header_view(run.tools.project_src, run.tools.header_view);
     run.child_threads = o.threads_given ? o.threads : std::max(1, hw / jobs);
     run.grade_exe = self_exe();
     run.progress = isatty(2) != 0 && !o.quiet;  // as the renderers' progress bar

@@ -62,7 +62,7 @@ const std::vector<CheckInfo>& all_checks() {
         {"bvh_performance",
          TaskType::performance,
          check_bvh_performance,
-         {"scene", "rays", "timed_rays", "max_timed_seconds", "max_wrong_answers", "linear_rays",
+         {"scene", "rays", "timed_rays", "max_timed_seconds", "rel_tol", "linear_rays",
           "repeats", "max_leaf", "min_speedup", "max_tests_per_ray", "max_nodes_per_ray",
           "quality_rays", "max_sah_ratio", "max_depth_ratio", "max_visited_ratio"},
          "the student's whole BVH: primitive tests and nodes per ray of the grader's traversal of "

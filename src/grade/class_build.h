@@ -29,7 +29,13 @@ struct ClassBuildTools {
     /// (the project's sources, the main build), the submission and the
     /// system, writing only its build folder; false: limits only.
     bool sandbox = true;
-    std::vector<std::string> readable;
+    std::vector<std::string> readable = {};
+    /// The project's src/ (include paths point there) and its headers-only
+    /// view (header_view.h), which the sandbox binds at src/'s path: a
+    /// submission cannot #include a reference .cpp. Outside the sandbox
+    /// the compiler's dependency lists are checked instead (compile_deps.h).
+    std::string project_src = {};
+    std::string header_view = {};
     /// Per compiler process: a source that includes /dev/zero or
     /// instantiates without end fails its build with the reason.
     ChildLimits limits{4e9, 1e9, 120};

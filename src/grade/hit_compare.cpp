@@ -1,10 +1,15 @@
 #include "grade/hit_compare.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "grade/case_log.h"
 
 namespace pt {
+
+bool same_closest_t(double got, double want, double rel_tol) {
+    return std::fabs(got - want) <= rel_tol * std::max(1.0, std::fabs(want));
+}
 
 std::string compare_hits(const std::optional<Hit>& s, const std::optional<Hit>& r,
                          const HitTolerance& tol) {

@@ -33,6 +33,7 @@
 #include "core/timer.h"
 #include "grade/bvh_inputs.h"
 #include "grade/case_log.h"
+#include "grade/hit_compare.h"
 #include "grade/params.h"
 #include "grade/performance_checks.h"
 #include "grade/random_inputs.h"
@@ -78,22 +79,25 @@ TraversalTiming time_traversal(const BVHTree& tree, BvhIntersectFn traverse,
 
 namespace {
 
-bool same_t(double a, double b) { return std::abs(a - b) <= 1e-9 * std::max(1.0, std::abs(b)); }
-
-/// A student's answer against the closest hit `truth`: the closest
-/// (t within 1e-9 relative: both come from the same intersection routines),
-/// a real hit that is not the closest (or a miss: a search that skipped
-/// part of the tree, as traversal bugs do), or no hit of the primitive it
-/// names (made up: it does not count as an answer at all).
+/// A student's answer against the closest hit `truth`, with part2.3's
+/// tolerance (hit_compare.h): the closest, another real hit or a miss (a
+/// search that skipped part of the tree, as traversal bugs do), or no hit
+/// of the primitive it names (made up).
 enum class Answer { closest, not_closest, made_up };
 Answer judge_answer(const Scene& scene, const IntersectStage& intersect, const Ray& ray,
-                    const std::optional<Hit>& answer, const std::optional<Hit>& truth) {
+                    const std::optional<Hit>& answer, const std::optional<Hit>& truth,
+                    double rel_tol) {
     if (!answer) return truth ? Answer::not_closest : Answer::closest;
     if (answer->primitive >= scene.primitive_count()) return Answer::made_up;
     std::optional<Hit> real = intersect_primitive(scene, intersect, answer->primitive, ray);
-    if (!real || !same_t(real->t, answer->t)) return Answer::made_up;
+    if (!real || !same_closest_t(answer->t, real->t, rel_tol)) return Answer::made_up;
     if (!truth) return Answer::made_up;  // a real hit the grader's traversal missed: impossible
-    return same_t(answer->t, truth->t) ? Answer::closest : Answer::not_closest;
+    return same_closest_t(answer->t, truth->t, rel_tol) ? Answer::closest : Answer::not_closest;
+}
+
+std::string hit_text(const std::optional<Hit>& h) {
+    return h ? "a hit on primitive " + std::to_string(h->primitive) + " at t = " + format_num(h->t)
+             : std::string("a miss");
 }
 
 std::string joined(const std::vector<std::string>& parts) {
@@ -111,7 +115,7 @@ TaskResult check_bvh_performance(const TaskSpec& spec, const GradeEnvironment& e
     const double min_speedup = param(spec, "min_speedup", 2.0);
     const double max_nodes = param(spec, "max_nodes_per_ray", INFINITY);
     const double max_tests = param(spec, "max_tests_per_ray", INFINITY);
-    const double max_wrong = param(spec, "max_wrong_answers", 0.0);
+    const double rel_tol = param(spec, "rel_tol", 1e-9);
     const size_t leaf = size_t(param(spec, "max_leaf", 4));
     Rng rng = check_rng(env.seed, "bvh_performance");
 
@@ -131,14 +135,19 @@ TaskResult check_bvh_performance(const TaskSpec& spec, const GradeEnvironment& e
     const size_t counted = std::min<size_t>(rays.size(), size_t(param(spec, "rays", 2000)));
     const size_t answered = timing.answers.size();
     size_t visited = 0, tests = 0, wrong = 0, made_up = 0;
+    std::string first_wrong;  // the first ray answered with another hit than the closest
     for (size_t i = 0; i < std::max(counted, answered); ++i) {
         size_t v = 0, t = 0;
         std::optional<Hit> truth = fixed_closest_hit(*mine, rays[i], v, t);
         if (i < counted) visited += v, tests += t;
         if (i >= answered) continue;
-        Answer a = judge_answer(scene, env.reference.intersect, rays[i], timing.answers[i], truth);
+        Answer a = judge_answer(scene, env.reference.intersect, rays[i], timing.answers[i], truth,
+                                rel_tol);
         wrong += a == Answer::not_closest;
         made_up += a == Answer::made_up;
+        if (a == Answer::not_closest && first_wrong.empty())
+            first_wrong = "ray o = " + format_vec(rays[i].o) + " d = " + format_vec(rays[i].d) +
+                          ": " + hit_text(timing.answers[i]) + " instead of " + hit_text(truth);
     }
     const double tests_per_ray = double(tests) / double(std::max<size_t>(counted, 1));
     const double nodes_per_ray = double(visited) / double(std::max<size_t>(counted, 1));
@@ -222,12 +231,13 @@ TaskResult check_bvh_performance(const TaskSpec& spec, const GradeEnvironment& e
         failures.push_back("the student's traversal answered " + std::to_string(made_up) + " of " +
                            std::to_string(answered) +
                            " timed rays with a hit that the primitive it names does not have");
-    else if (!(double(wrong) <= max_wrong * double(answered)))
-        failures.push_back("the student's traversal missed the closest hit on " +
+    else if (wrong > 0)
+        // A search that skips part of the tree is faster for being wrong:
+        // speed is credited only to a traversal right on every timed ray.
+        failures.push_back("no speed credit: the student's traversal missed the closest hit on " +
                            std::to_string(wrong) + " of " + std::to_string(answered) +
-                           " timed rays, more than " + format_num(100 * max_wrong) +
-                           "% (part2.3 grades the answers; the speed of a search that skips "
-                           "part of the tree is not graded)");
+                           " timed rays (first: " + first_wrong +
+                           "); only a traversal that finds the closest hit on every ray is timed");
     else if (!(speedup >= min_speedup))
         failures.push_back("speedup " + format_num(speedup) + " < " + format_num(min_speedup));
     r.status = failures.empty() ? TaskStatus::pass : TaskStatus::fail;

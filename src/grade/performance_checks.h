@@ -15,10 +15,11 @@
 // Manifest params of `bvh_performance`: "scene" (scenes/cbox_knot.json),
 // "rays" (2000: the grader's traversal counts on these), "timed_rays"
 // (20000 distinct rays for the student's traversal), "max_timed_seconds"
-// (1: the runner stops answering after this much CPU time), "max_wrong_answers"
-// (0: the fraction of timed rays whose answer may be another hit than the
-// closest, or a miss; an answer that is no hit of the primitive it names
-// always fails), "linear_rays" (200: the linear scan is timed on these and compared
+// (1: the runner stops answering after this much CPU time), "rel_tol"
+// (1e-9: part2.3's tolerance on t, hit_compare.h; every timed answer must
+// be the closest hit within it, or the task fails with no speed credit:
+// a search that skips part of the tree is fast for being wrong),
+// "linear_rays" (200: the linear scan is timed on these and compared
 // per ray), "repeats" (3: the linear scan's fastest run), "max_leaf" (4),
 // "min_speedup" (2), "max_tests_per_ray" and "max_nodes_per_ray" (no limit
 // unless given), and the tree-quality limits (tree_quality.h).

@@ -51,9 +51,9 @@ void bind_all(std::vector<std::string>& p, const std::vector<std::string>& paths
 
 }  // namespace
 
-std::vector<std::string> build_sandbox_prefix(const std::vector<std::string>& readable,
-                                              const std::vector<std::string>& writable,
-                                              bool use_bwrap) {
+std::vector<std::string> build_sandbox_prefix(
+    const std::vector<std::string>& readable, const std::vector<std::string>& writable,
+    bool use_bwrap, const std::vector<std::pair<std::string, std::string>>& mapped) {
     static const bool bwrap_runs = [] {
         std::vector<std::string> probe = base_prefix();
         probe.insert(probe.end(), {"--", "/bin/true"});
@@ -64,6 +64,14 @@ std::vector<std::string> build_sandbox_prefix(const std::vector<std::string>& re
     p.insert(p.end(), {"--ro-bind-try", "/etc/alternatives", "/etc/alternatives", "--setenv",
                        "CCACHE_DISABLE", "1"});
     bind_all(p, readable, "--ro-bind");
+    // Later binds cover earlier ones: the view hides src/ even if a
+    // readable folder holds it.
+    for (const auto& [from, to] : mapped) {
+        std::error_code ec;
+        const std::string a = std::filesystem::weakly_canonical(from, ec).string();
+        const std::string b = std::filesystem::weakly_canonical(to, ec).string();
+        p.insert(p.end(), {"--ro-bind", a, b});
+    }
     bind_all(p, writable, "--bind");
     p.push_back("--");
     return p;

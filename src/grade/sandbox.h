@@ -8,6 +8,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace pt {
@@ -27,10 +28,12 @@ Sandbox make_sandbox(const std::vector<std::string>& readable, bool use_bwrap);
 /// name points) and `readable` bound read-only, `writable` (the build
 /// folder) read-write, an empty /tmp and no ccache (its cache is outside).
 /// A source that includes a file the grader can read (/etc/..., another
-/// student's folder, the reports) then fails to compile. An empty prefix
-/// where bwrap cannot run (or `use_bwrap` is false).
-std::vector<std::string> build_sandbox_prefix(const std::vector<std::string>& readable,
-                                              const std::vector<std::string>& writable,
-                                              bool use_bwrap);
+/// student's folder, the reports) then fails to compile. `mapped` binds
+/// folders read-only at another path (from, to), after `readable`: the
+/// headers-only view of the project's src/ at src/'s path (header_view.h).
+/// An empty prefix where bwrap cannot run (or `use_bwrap` is false).
+std::vector<std::string> build_sandbox_prefix(
+    const std::vector<std::string>& readable, const std::vector<std::string>& writable,
+    bool use_bwrap, const std::vector<std::pair<std::string, std::string>>& mapped = {});
 
 }  // namespace pt

@@ -93,6 +93,24 @@ std::vector<Submission> list_submissions(const std::string& class_dir) {
     return out;
 }
 
+std::string first_symlink(const Submission& s) {
+    std::error_code ec;
+    size_t seen = 0;
+    for (fs::recursive_directory_iterator it(s.dir, ec), end; !ec && it != end; it.increment(ec)) {
+        if (++seen > 100000) return "(more than 100,000 files)";
+        if (it->is_symlink(ec)) {
+            const fs::path rel = it->path().lexically_relative(s.dir);
+            const std::string said =
+                rel.string() + " (a link to " + fs::read_symlink(it->path(), ec).string() + ")";
+            std::string out;  // the student's names: printable ASCII, one short line
+            for (char c : said)
+                if (c >= 32 && c < 127 && out.size() < 300) out += c;
+            return out;
+        }
+    }
+    return "";
+}
+
 std::vector<std::string> submission_sources(const Submission& s, const std::string& handout_dir) {
     std::map<std::string, std::string> files = part_sources(handout_dir);
     for (const auto& [relative, path] : part_sources(s.dir))

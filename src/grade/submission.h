@@ -27,6 +27,13 @@ Submission inspect_submission(const std::string& name, const std::string& dir);
 /// holds no subfolder.
 std::vector<Submission> list_submissions(const std::string& class_dir);
 
+/// The first symbolic link in `s`'s folder (its path relative to it, and
+/// where it points), "" when there is none. A link could show the compiler
+/// any file the grader can read (a reference .cpp of src/ included as a
+/// header): `grade --class` refuses a submission that holds one, sandbox
+/// or not. Looks at most at 100,000 entries (a larger folder is refused too).
+std::string first_symlink(const Submission& s);
+
 /// The absolute paths of the .cpp files to compile for `s`: its own
 /// part*/*.cpp, and for every file of `handout_dir`/part*/*.cpp it lacks,
 /// the handout's stub. Sorted.

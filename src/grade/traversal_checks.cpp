@@ -14,6 +14,7 @@
 #include "grade/bvh_inputs.h"
 #include "grade/case_log.h"
 #include "grade/function_checks.h"
+#include "grade/hit_compare.h"
 #include "grade/params.h"
 #include "grade/random_inputs.h"
 
@@ -60,11 +61,8 @@ TaskResult check_traversal(const TaskSpec& spec, const GradeEnvironment& env, Qu
                 std::optional<Hit> want = brute_force_closest(*tree, under, ray);
                 if (query == Query::closest) {
                     std::optional<Hit> got = student.bvh_intersect(*tree, ray, node);
-                    bool ok =
-                        bool(got) == bool(want) &&
-                        (!want || std::fabs(got->t - want->t) <= tol * std::max(1.0, want->t));
-                    if (ok)
-                        log.agreed();  // equal t on two primitives (a shared edge) is a tie
+                    if (bool(got) == bool(want) && (!want || same_closest_t(got->t, want->t, tol)))
+                        log.agreed();
                     else
                         log.mismatch(where + ": " + hit_text(got) + " instead of " +
                                      hit_text(want) + " (brute force over the node's " +

@@ -186,6 +186,80 @@ TEST_CASE("scripts/gradescope/run_autograder: an upload in either layout gives r
     CHECK(r["output"].get<std::string>().find("none of the handout's files") != std::string::npos);
 }
 
+namespace {
+
+/// part1/camera.cpp that compiles the reference's camera.cpp under another
+/// name (`reference` renamed by the preprocessor) and returns its answers:
+/// the link's withheld stand-ins cannot see it, only what the compile reads.
+const char* kStolenCamera = R"(// The reference's camera, compiled here under another name.
+#define reference stolen
+#include "INCLUDED"
+#undef reference
+
+namespace pt::student {
+Ray generate_ray(const Camera& camera, double x, double y, Vec2 lens_sample) {
+    return stolen::generate_ray(camera, x, y, lens_sample);
+}
+PixelResult raytrace_pixel(const RenderContext& context, int x, int y) {
+    return stolen::raytrace_pixel(context, x, y);
+}
+}  // namespace pt::student
+)";
+
+/// A class of three: gina includes the reference's src/stages/camera.cpp
+/// through the include path, hank through a symbolic link in his folder
+/// that a header name points at it, alice is the honest solution.
+std::string make_thieves(const std::string& dir) {
+    const std::string src = PT_SOURCE_DIR;
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    fs::create_directories(dir + "/alice");
+    fs::copy(src + "/tests/grading/solution/part1", dir + "/alice/part1", fs::copy_options::recursive);
+    for (const char* name : {"gina", "hank"}) {
+        fs::create_directories(dir + "/" + name + "/part1");
+        fs::copy(src + "/assignments/part1/intersect.cpp", dir + "/" + name + "/part1/intersect.cpp");
+        std::string text = kStolenCamera;
+        text.replace(text.find("INCLUDED"), 8, name == std::string("gina") ? "stages/camera.cpp" : "camera_impl.h");
+        std::ofstream(dir + "/" + name + "/part1/camera.cpp") << text;
+    }
+    fs::create_symlink(src + "/src/stages/camera.cpp", dir + "/hank/part1/camera_impl.h");
+    return dir;
+}
+
+}  // namespace
+
+TEST_CASE("grade --class: a submission cannot compile a reference .cpp of src/ under another name") {
+    // Inside bubblewrap the compile sees a headers-only view of src/; with
+    // --no-sandbox the compiler's dependency lists are checked after the
+    // build (there gina's stolen camera compiles and links: the check is
+    // what refuses it). A symbolic link is refused in both.
+    const std::string dir = make_thieves(kRoot + "/thieves");
+    const bool bwrap = !pt::build_sandbox_prefix({}, {}, true).empty();
+    for (const std::string mode : {"", " --no-sandbox"}) {
+        INFO("mode:" << mode);
+        std::string output;
+        const int code = grade("--class " + dir + " --out " + kRoot + "/thieves_out --task part1.1 --build-dir " +
+                                   kRoot + "/work -q" + mode,
+                               &output);
+        REQUIRE_MESSAGE(code == 0, output);
+        const std::vector<std::string> rows = lines(slurp(kRoot + "/thieves_out/gradebook.csv"));
+        REQUIRE(rows.size() == 4);
+        INFO(rows[2] << "\n" << rows[3]);
+        CHECK(rows[1] == "alice,25,25,25,graded,");  // honest: unaffected
+        CHECK(rows[2].rfind("gina,0,0,25,does not compile,", 0) == 0);
+        if (mode.empty() && bwrap)
+            CHECK(rows[2].find("fatal error: stages/camera.cpp: No such file or directory (the compile sees "
+                               "only the project's headers: a .cpp of src/ cannot be included)") !=
+                  std::string::npos);
+        else
+            CHECK(rows[2].find("part1/camera.cpp includes src/stages/camera.cpp, a source file of the "
+                               "project: only its headers may be included") != std::string::npos);
+        CHECK(rows[3].rfind("hank,0,0,25,does not compile,", 0) == 0);
+        CHECK(rows[3].find("the submission holds a symbolic link, part1/camera_impl.h (a link to ") !=
+              std::string::npos);
+    }
+}
+
 TEST_CASE("grade --class: a hostile compile fails that student's build with its reason") {
     // erin includes /dev/zero (the compiler reads without end: the memory
     // limit stops it); frank includes a file of the grader's (the sandbox

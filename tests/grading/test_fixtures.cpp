@@ -3,6 +3,8 @@
 // other task of its part.
 #include <doctest/doctest.h>
 
+#include <cstdio>
+
 #include "fixtures/fixtures.h"
 #include "grade/report.h"
 #include "grading_helpers.h"
@@ -63,6 +65,40 @@ TEST_CASE("a slab test wrong on one case family loses that family's points, and 
         CHECK(t.message.rfind("17 of 20 points: family \"exact answers: flat boxes, touching rays, "
                               "origins on faces\" loses its 3 points",
                               0) == 0);
+    }
+}
+
+TEST_CASE("part2.5 gives no speed credit to a traversal wrong on a minority of rays") {
+    // Each skips part of the tree on a few percent of rays and is faster for
+    // it: until this rule, up to 25% of wrong answers kept the speed's 20
+    // points (part2.3 alone failed them).
+    const PartManifest& part2 = manifest(2);
+    const TaskSpec* spec = nullptr;
+    for (const TaskSpec& x : part2.tasks)
+        if (x.id == "part2.5") spec = &x;
+    REQUIRE(spec);
+    const std::vector<fixtures::Fixture> all = fixtures::fixtures_of_part(2);
+    for (const std::string name :
+         {"bvh_intersect: skips the farther child when the hit lies before its box's exit",
+          "bvh_intersect: the first child with a hit wins",
+          "hidden: bvh_intersect: a leaf returns its first hit, not the closest"}) {
+        const fixtures::Fixture* f = nullptr;
+        for (const fixtures::Fixture& x : all)
+            if (x.name == name) f = &x;
+        REQUIRE_MESSAGE(f, name);
+        TaskResult t = grade_task(*spec, environment(fixtures::stages_with(*f), 1));
+        INFO(name << ": " << t.message);
+        CHECK(t.status == TaskStatus::fail);
+        CHECK(t.points == 0);
+        const std::string said = "no speed credit: the student's traversal missed the closest hit on ";
+        REQUIRE(t.message.rfind(said, 0) == 0);
+        // "N of M timed rays": a minority, counted, and the first one shown.
+        size_t wrong = 0, answered = 0;
+        REQUIRE(std::sscanf(t.message.c_str() + said.size(), "%zu of %zu timed rays", &wrong, &answered) == 2);
+        CHECK(wrong > 0);
+        CHECK(double(wrong) < 0.25 * double(answered));
+        CHECK(t.message.find("(first: ray o = ") != std::string::npos);
+        MESSAGE(name << ": " << wrong << " of " << answered << " timed rays wrong (seed 1)");
     }
 }
 
