@@ -12,8 +12,8 @@ Reads the gcov counters of every student object under BUILD_DIR (gcov's JSON
 format), maps functions to tasks through the manifests (a function check's
 "check" is the function it grades; an image task's "student_functions";
 Part 2's performance task all four functions; part3.7's check both
-heuristics; an image task that runs a whole stage, "student_functions":
-["photon"], every function of its part's files), and drops the lines the
+heuristics; part7.4's whole "bdpt" stage its three functions, part8.5's
+"photon" stage its four), and drops the lines the
 manifests' "coverage_exclusions" list ({"function", "line", "reason"}: the
 line's text, stripped). Branches gcov marks as exception paths ("throw")
 are not counted: they are the compiler's unwinding edges, not the student's;
@@ -37,31 +37,32 @@ CHECK_FUNCTIONS = {
     "mis_heuristics": ["power_heuristic", "balance_heuristic"],
 }
 
+# Image tasks whose "student_functions" name a whole stage (no "."): every
+# function of that stage runs with the student's code.
+STAGE_FUNCTIONS = {
+    "bdpt": ["random_walk", "connect", "mis_weight"],
+    "photon": ["emit_photon", "build_kdtree", "k_nearest", "density_estimate"],
+}
+
 
 def tasks_of_functions(assignments):
-    """owners: function -> task ids; whole_stage: part folder ("part8") ->
-    the ids of its image tasks that run a whole stage of the student's
-    ("student_functions": ["photon"]: every function of that part's files)."""
-    owners, exclusions, whole_stage = {}, [], {}
+    owners, exclusions = {}, []
     for path in sorted(glob.glob(os.path.join(assignments, "part*", "grading.json"))):
         manifest = json.load(open(path))
-        part = os.path.basename(os.path.dirname(path))
         for ex in manifest.get("coverage_exclusions", []):
             exclusions.append(ex)
         for task in manifest["tasks"]:
             names = []
             if task["check"] == "image":
-                stages = task["params"]["student_functions"]
-                if any("." not in s for s in stages):
-                    whole_stage.setdefault(part, []).append(task["id"])
-                names = [s.split(".")[-1] for s in stages if "." in s]
+                for s in task["params"]["student_functions"]:
+                    names += STAGE_FUNCTIONS.get(s, [s.split(".")[-1]])
             elif task["check"] in CHECK_FUNCTIONS:
                 names = CHECK_FUNCTIONS[task["check"]]
             else:
                 names = [task["check"]]
             for n in names:
                 owners.setdefault(n, []).append(task["id"])
-    return owners, exclusions, whole_stage
+    return owners, exclusions
 
 
 def gcov_json(gcda):
@@ -88,7 +89,7 @@ def main():
         own = os.path.realpath(sys.argv[4])
         written = {os.path.relpath(os.path.join(d, f), own)
                    for d, _, files in os.walk(own) for f in files if f.endswith(".cpp")}
-    owners, exclusions, whole_stage = tasks_of_functions(assignments)
+    owners, exclusions = tasks_of_functions(assignments)
     gcdas = [g for g in glob.glob(os.path.join(build, "**", "*.gcda"), recursive=True)]
     if not gcdas:
         print("coverage: no gcov counters found under " + build, file=sys.stderr)
@@ -135,8 +136,7 @@ def main():
     missing = 0
     by_task = {}
     for name, entry in report.items():
-        tasks = owners.get(name, []) + whole_stage.get(entry["file"].split(os.sep)[0], [])
-        for task in tasks or ["(no task grades it)"]:
+        for task in owners.get(name, ["(no task grades it)"]):
             by_task.setdefault(task, []).append(name)
     only = [t for t in os.environ.get("PT_COVERAGE_TASKS", "").split(",") if t]
     for task in sorted(by_task):
