@@ -250,6 +250,31 @@ class Builder {
         return sah_split(begin, end, box, centroids);
     }
 
+    /// sweep_split for two primitives (the most common small node): every
+    /// axis offers the same one split, so the sweep's answer is axis 0's
+    /// order and the same cost, found without sorting.
+    SplitChoice pair_split(size_t begin, PrimRef* p, const F4* c, double parent_area) {
+        SplitChoice choice;
+        Box4 first, second;
+        first.expand(p[0].lo, p[0].hi);
+        second.expand(p[1].lo, p[1].hi);
+        const double cost = kTraversalCost + kIntersectionCost * (first.area() + second.area()) / parent_area;
+        if (2 <= max_leaf_ && kIntersectionCost * 2.0 <= cost) {
+            choice.leaf = true;
+            return choice;
+        }
+        const bool swap = c[1][0] < c[0][0];  // the sweep's order on axis 0 (ties keep positions)
+        if (swap) std::swap(p[0], p[1]);
+        choice.left = swap ? second : first;
+        choice.right = swap ? first : second;
+        choice.left_centroids.expand(c[swap ? 1 : 0]);
+        choice.right_centroids.expand(c[swap ? 0 : 1]);
+        choice.axis = 0;
+        choice.mid = begin + 1;
+        choice.boxes_known = true;
+        return choice;
+    }
+
     /// Exact object-split SAH for a small node: on each axis the primitives
     /// sorted by centroid and every one of the n - 1 splits of that order
     /// weighed (the sweep of Wald, Boulos and Shirley 2007). Cheaper than
@@ -262,6 +287,7 @@ class Builder {
         F4 c[kSweepBelow];
         for (int i = 0; i < n; ++i) c[i] = centroid(p[i]);
         const double parent_area = box.area();
+        if (n == 2) return pair_split(begin, p, c, parent_area);
         double best_cost = INFINITY;
         int best_axis = 0, best_k = 0;
         uint8_t order[3][kSweepBelow];
