@@ -48,6 +48,9 @@ constexpr double kIntersectionCost = 1.0;
 constexpr int kBins = 16;
 // Nodes of fewer primitives are split by an exact sweep instead of bins.
 constexpr int kSweepBelow = 16;
+// Nodes of at most this many primitives are partitioned out of place
+// (32 bytes each, twice: 256 KB, within the 2 MB L2).
+constexpr size_t kOutOfPlaceBelow = 4096;
 // Below this depth every split is an object median (flat_bvh.h, "Robustness").
 constexpr int kMedianDepth = 48;
 
@@ -163,7 +166,7 @@ inline float round_up(double x) {
 class Builder {
   public:
     Builder(std::vector<PrimRef> prims, int max_leaf, BvhSplit split, FlatBvh& out)
-        : prims_(std::move(prims)), max_leaf_(size_t(max_leaf)), split_(split), out_(out) {}
+        : prims_(std::move(prims)), scratch_(std::min(prims_.size(), kOutOfPlaceBelow)), max_leaf_(size_t(max_leaf)), split_(split), out_(out) {}
 
     /// The boxes of prims_[begin, end) and of their centroids.
     void bounds(size_t begin, size_t end, Box4& box, Box4& centroids) const {
@@ -444,10 +447,16 @@ class Builder {
         for (int k = 0; k < kBins; ++k) (k < best_plane ? choice.left : choice.right).expand(bins[a][k]);
         PrimRef* lo = prims_.data() + begin;
         PrimRef* hi = prims_.data() + end;
-        switch (a) {  // the axis as a constant: its lane is read without a trip through memory
-            case 0: lo = partition<0>(lo, hi, binner, best_plane, choice); break;
-            case 1: lo = partition<1>(lo, hi, binner, best_plane, choice); break;
-            default: lo = partition<2>(lo, hi, binner, best_plane, choice); break;
+        // The axis as a constant: its lane is read without a trip through
+        // memory. Out of place while the node fits in L2 with its copy;
+        // beyond that the extra memory traffic costs more than the
+        // mispredictions it saves (measured: the 1M knot 6% slower, the
+        // bunny 10% faster, out of place throughout).
+        const bool small = n <= kOutOfPlaceBelow;
+        switch (a) {
+            case 0: lo = small ? partition<0>(lo, hi, binner, best_plane, choice) : hoare<0>(lo, hi, binner, best_plane, choice); break;
+            case 1: lo = small ? partition<1>(lo, hi, binner, best_plane, choice) : hoare<1>(lo, hi, binner, best_plane, choice); break;
+            default: lo = small ? partition<2>(lo, hi, binner, best_plane, choice) : hoare<2>(lo, hi, binner, best_plane, choice); break;
         }
         choice.axis = a;
         choice.mid = size_t(lo - prims_.data());
@@ -455,13 +464,9 @@ class Builder {
         return choice;
     }
 
-    /// Hoare's partition of [lo, hi) by the bin on axis A (left: below
-    /// `plane`), gathering both sides' centroid boxes; returns the first
-    /// primitive of the right side.
+    /// Hoare's in-place partition of [lo, hi), as `partition` below.
     template <int A>
-    static PrimRef* partition(PrimRef* lo, PrimRef* hi, const Binner& binner, int plane, SplitChoice& choice) {
-        // Binner::bins without the conversion: for x in [0, kBins - 1],
-        // int(x) < plane exactly when x < plane.
+    static PrimRef* hoare(PrimRef* lo, PrimRef* hi, const Binner& binner, int plane, SplitChoice& choice) {
         const float limit = float(plane);
         auto side = [&](F4 c) { return binner.position(c)[A] < limit; };
         while (true) {
@@ -479,7 +484,45 @@ class Builder {
         }
     }
 
+    /// Partition of [lo, hi) by the bin on axis A (left: below `plane`),
+    /// gathering both sides' centroid boxes; returns the first primitive of
+    /// the right side. Out of place and without branches: each primitive is
+    /// written to both ends of scratch_ (the left side grows from the front,
+    /// the right from the back; the copy on the wrong side is overwritten
+    /// later) and the side only moves the counts, because which side a
+    /// primitive falls on is a coin toss the branch predictor loses about
+    /// half the time in Hoare's in-place scheme.
+    template <int A>
+    PrimRef* partition(PrimRef* lo, PrimRef* hi, const Binner& binner, int plane, SplitChoice& choice) {
+        // Binner::bins without the conversion: for x in [0, kBins - 1],
+        // int(x) < plane exactly when x < plane.
+        const float limit = float(plane);
+        const size_t n = size_t(hi - lo);
+        PrimRef* out = scratch_.data();
+        size_t left = 0, right = n;  // out[0, left): left side; out[right, n): right side
+        const F4 inf = {INFINITY, INFINITY, INFINITY, INFINITY};
+        F4 llo = inf, lhi = -inf, rlo = inf, rhi = -inf;
+        for (PrimRef* p = lo; p < hi; ++p) {
+            const F4 c = centroid(*p);
+            const bool is_left = binner.position(c)[A] < limit;
+            out[left] = *p;
+            out[right - 1] = *p;
+            left += is_left;
+            right -= !is_left;
+            const I4 m = I4{} - I4{is_left, is_left, is_left, is_left};  // all ones on the left
+            llo = vmin(F4((I4(c) & m) | (I4(inf) & ~m)), llo);
+            lhi = vmax(F4((I4(c) & m) | (I4(-inf) & ~m)), lhi);
+            rlo = vmin(F4((I4(c) & ~m) | (I4(inf) & m)), rlo);
+            rhi = vmax(F4((I4(c) & ~m) | (I4(-inf) & m)), rhi);
+        }
+        choice.left_centroids.expand(llo, lhi);
+        choice.right_centroids.expand(rlo, rhi);
+        std::memcpy(static_cast<void*>(lo), out, n * sizeof(PrimRef));
+        return lo + left;
+    }
+
     std::vector<PrimRef> prims_;
+    std::vector<PrimRef> scratch_;  ///< partition's output, as long as prims_
     size_t max_leaf_;
     BvhSplit split_;
     FlatBvh& out_;
