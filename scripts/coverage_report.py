@@ -12,7 +12,7 @@ Reads the gcov counters of every student object under BUILD_DIR (gcov's JSON
 format), maps functions to tasks through the manifests (a function check's
 "check" is the function it grades; an image task's "student_functions";
 Part 2's performance task all four functions; part3.7's check both
-heuristics), and drops the lines the
+heuristics; part7.4's whole "bdpt" stage its three functions), and drops the lines the
 manifests' "coverage_exclusions" list ({"function", "line", "reason"}: the
 line's text, stripped). Branches gcov marks as exception paths ("throw")
 are not counted: they are the compiler's unwinding edges, not the student's;
@@ -36,6 +36,12 @@ CHECK_FUNCTIONS = {
     "mis_heuristics": ["power_heuristic", "balance_heuristic"],
 }
 
+# Image tasks whose "student_functions" name a whole stage (no "."): every
+# function of that stage runs with the student's code.
+STAGE_FUNCTIONS = {
+    "bdpt": ["random_walk", "connect", "mis_weight"],
+}
+
 
 def tasks_of_functions(assignments):
     owners, exclusions = {}, []
@@ -46,7 +52,8 @@ def tasks_of_functions(assignments):
         for task in manifest["tasks"]:
             names = []
             if task["check"] == "image":
-                names = [s.split(".")[-1] for s in task["params"]["student_functions"]]
+                for s in task["params"]["student_functions"]:
+                    names += STAGE_FUNCTIONS.get(s, [s.split(".")[-1]])
             elif task["check"] in CHECK_FUNCTIONS:
                 names = CHECK_FUNCTIONS[task["check"]]
             else:

@@ -49,6 +49,8 @@ all_groups=(
   "pane38|3|part3.8|frosted-glass pane|0"
   "gold41|4|part4.1|rough gold and frosted glass|0"
   "fog95|9|part9.5||0"
+  "lights74|7|part7.4|every kind|0"
+  "walk71|7|part7.1||1"
 )
 
 # Round-robin over the groups (seeds 1.. of every group, then the next

@@ -116,6 +116,7 @@ std::vector<FlagSpec> flag_table() {
         {{"--bvh-split"}, 1, [](Options& o, S f, V v) { o.accelerator.split = one_of(f, v[0], {"sah", "median", "middle"}); }},
         {{"--max-leaf"}, 1, [](Options& o, S f, V v) { o.accelerator.max_leaf = int(parse_whole_number(f, v[0], 1, 255)); }},
         {{"--bvh-width"}, 1, [](Options& o, S f, V v) { o.accelerator.width = std::stoi(one_of(f, v[0], {"2", "4", "8"})); }},
+        {{"--packets"}, 1, [](Options& o, S f, V v) { o.packets = one_of(f, v[0], {"on", "off"}) == "on"; }},
         {{"--bvh-view"}, 1, [](Options& o, S f, V v) {
              for (char c : v[0])
                  if (c != 'L' && c != 'R') throw InputError(f + ": expected a path of L and R steps, got '" + v[0] + "'");
@@ -263,6 +264,8 @@ std::string usage(const std::string& program, StageSet default_student) {
       << "  --bvh-split sah|median|middle, --max-leaf N                            [sah, 4]\n"
       << "  --bvh-width 2|4|8  children per node of the reference BVH (4: SSE,\n"
       << "                   8: AVX2, scalar where the processor lacks it)     [8]\n"
+      << "  --packets on|off  camera rays of 8 neighbouring pixels traced together\n"
+      << "                   (the same image either way)                         [off]\n"
       << "  --bvh-view PATH highlight the BVH node at PATH (L/R steps from the root)\n"
       << "  --bvh-depth-image FILE.png  also write a heat map of BVH nodes visited per pixel\n"
       << "  --sampler independent|stratified|halton|sobol|zsobol                   ["

@@ -40,6 +40,7 @@ struct Options {
     std::string triangle_test = "moller";  ///< --triangle moller|watertight
     std::optional<std::string> bvh_view;   ///< --bvh-view PATH
     std::string bvh_depth_image;           ///< --bvh-depth-image FILE.png
+    bool packets = false;  ///< --packets on|off (render/camera_packets.h)
     bool help = false;                 ///< -h / --help
 };
 

@@ -120,7 +120,8 @@ void write_stats(const std::string& path, const std::string& program, const Opti
     j["seconds"] = {{"load", seconds.load}, {"build", seconds.build}, {"render", seconds.render},
                     {"total", seconds.load + seconds.build + seconds.render}};
     j["rays"] = {{"camera", c.camera_rays}, {"closest_hit", c.closest_hit_rays}, {"shadow", c.shadow_rays},
-                 {"total", c.rays()}};
+                 {"total", c.rays()}, {"from_packets", c.packet_rays}};
+    j["packets"] = options.packets;
     j["mrays_per_second"] = seconds.render > 0 ? c.rays() / seconds.render * 1e-6 : 0.0;
     j["primitive_tests_per_ray"] = c.primitive_tests / rays;
     j["nodes_visited_per_ray"] = c.nodes_visited / rays;
@@ -242,6 +243,7 @@ int run(const std::vector<std::string>& args, const std::string& program, StageS
     render_options.threads = options.threads;
     render_options.show_progress = !options.quiet && Progress::stderr_is_terminal();
     render_options.cell = options.cell;
+    render_options.packets = options.packets;
     RenderResult result = render_image(context, render_options);
     seconds.render = result.seconds;
 

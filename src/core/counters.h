@@ -17,6 +17,7 @@ struct RayCounters {
     uint64_t nodes_visited = 0;      ///< BVH nodes whose box was tested
     uint64_t nonfinite_samples = 0;  ///< NaN/Inf radiance samples caught before the film
     uint64_t clamped_samples = 0;    ///< samples scaled down by --clamp (biased; 0 without it)
+    uint64_t packet_rays = 0;        ///< closest-hit rays answered from a packet (--packets on)
 
     uint64_t rays() const { return closest_hit_rays + shadow_rays; }
     RayCounters& operator+=(const RayCounters& o) {
@@ -27,6 +28,7 @@ struct RayCounters {
         nodes_visited += o.nodes_visited;
         nonfinite_samples += o.nonfinite_samples;
         clamped_samples += o.clamped_samples;
+        packet_rays += o.packet_rays;
         return *this;
     }
     /// The work done between two readings of the same counters.
@@ -39,6 +41,7 @@ struct RayCounters {
         d.nodes_visited -= o.nodes_visited;
         d.nonfinite_samples -= o.nonfinite_samples;
         d.clamped_samples -= o.clamped_samples;
+        d.packet_rays -= o.packet_rays;
         return d;
     }
 };

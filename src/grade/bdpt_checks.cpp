@@ -17,6 +17,12 @@
 //                the area density cos cos / (pi d^2) integrated over each
 //                cell (midpoint rule, 16 x 16 points: the densities are
 //                smooth there); chi-square at the manifest's significance.
+//                And max_vertices 0 (the light subpath of -m 0) adds nothing.
+//                In a scene with an environment a camera walk may end with
+//                an escaped vertex (w: the unit direction of a ray from the
+//                vertex before that hits nothing; pdf_fwd per solid angle),
+//                and densities towards a light at infinity stay per solid
+//                angle.
 //   connect      every strategy (s, t) of reference subpaths (the Cornell
 //                box with its blocks, and the light bulb: a point light in
 //                a glass sphere, so delta vertices and blocked connections)
@@ -99,6 +105,10 @@ double bsdf_pdf_omega(const PathVertex& v, const PathVertex& prev, const PathVer
 /// p_omega at `from` as a density per unit area at `to`: p |cos theta_to| / d^2,
 /// without the cosine where `to` is a point (a point light, the camera).
 double area_density(double pdf_omega, const PathVertex& from, const PathVertex& to) {
+    // At infinity (an escaped camera ray, a directional light or the sky) a
+    // density stays per unit solid angle (stages/bdpt_vertex.h).
+    if (to.kind == VertexKind::escaped || (to.kind == VertexKind::light && to.light && to.light->at_infinity()))
+        return pdf_omega;
     const Vec3 d = to.p - from.p;
     const double d2 = d.norm2();
     if (!(d2 > 0)) return 0;
@@ -126,8 +136,26 @@ void check_walk(const RenderContext& context, Transport mode, const Color& beta,
     for (size_t i = 1; i < n; ++i) {
         const std::string at = where + ", vertex " + std::to_string(i);
         const PathVertex& v = path[i];
+        if (v.kind == VertexKind::escaped) {
+            // A camera ray that leaves a scene with an environment: the last
+            // vertex, its w the unit direction of a ray from the vertex
+            // before that hits nothing.
+            const bool allowed = i + 1 == n && mode == Transport::radiance && context.lights.environment();
+            Ray ray = first_ray;
+            if (i > 1) ray = tv[i - 1].isect->spawn_ray(v.w);
+            const bool along = i > 1 || (v.w - normalize(first_ray.d)).norm() <= 1e-9;
+            if (!allowed || !along || !(std::fabs(v.w.norm() - 1) <= 1e-9) || context.intersect(ray)) {
+                log.mismatch(at + ": an escaped vertex (w " + format_vec(v.w) + "), but " +
+                             (!allowed ? std::string("only a camera walk in a scene with an environment ends so")
+                                       : std::string("its w is not the unit direction of a ray that leaves the scene")));
+                return;
+            }
+            tv[i] = v;
+            log.agreed();
+            continue;
+        }
         if (v.kind != VertexKind::surface) {
-            log.mismatch(at + ": not a surface vertex (the graded scenes have no environment)");
+            log.mismatch(at + ": neither a surface vertex nor an escaped one");
             return;
         }
         // The vertex must be the first hit of the ray from the one before.
@@ -309,6 +337,36 @@ TaskResult check_random_walk(const TaskSpec& spec, const GradeEnvironment& env) 
                 check_walk(*g.context, mode, beta, pdf_dir, max_vertices, added, path, start, ray, rel_tol, log,
                            name + ", " + mode_name(mode) + " walk " + std::to_string(w));
             }
+        }
+    }
+
+    // max_vertices 0: the light subpath of -m 0 (light_subpath passes
+    // max_depth) must stay its light vertex alone; a walk that tests its
+    // limit only after a push adds one.
+    log.category("max_vertices 0 (the light subpath of -m 0): nothing added");
+    {
+        GradedScene g(env, scenes.empty() ? std::string("scenes/cbox.json") : scenes.front(), 0);
+        for (Transport mode : {Transport::radiance, Transport::importance}) {
+            Ray ray;
+            double pdf_dir = 0;
+            Color beta(1.0);
+            PathVertex start;
+            if (mode == Transport::radiance) {
+                start = camera_start(env, g.scene, rng, &ray, &pdf_dir);
+            } else {
+                const std::optional<LightStart> s = light_start(*g.context, rng);
+                if (!s) continue;
+                start = s->y0, ray = s->ray, beta = s->beta, pdf_dir = s->pdf_dir;
+            }
+            std::vector<PathVertex> path{start};
+            Rng walk_rng(env.seed, uint64_t(0), uint64_t(mode == Transport::radiance ? 4 : 5));
+            const int added = env.student.bdpt.random_walk(*g.context, ray, beta, pdf_dir, 0, mode, walk_rng, path);
+            if (added == 0 && path.size() == 1)
+                log.agreed();
+            else
+                log.mismatch(std::string(mode_name(mode)) + " walk with max_vertices 0: returned " +
+                             std::to_string(added) + " and made the path " + std::to_string(path.size()) +
+                             " vertices long (from 1); it must add none");
         }
     }
 

@@ -9,6 +9,7 @@
 
 #include "core/progress.h"
 #include "core/timer.h"
+#include "render/camera_packets.h"
 #include "render/splat_film.h"
 #include "render/sppm.h"
 #include "stages/integrator.h"
@@ -38,6 +39,7 @@ RenderResult render_image(const RenderContext& context, const RenderOptions& opt
     const int splat_layers = context.integrator.splat_layers(context);
     SplatFilm splats(splat_layers > 0 ? width : 0, splat_layers > 0 ? height : 0, splat_layers);
 
+    const bool packets = options.packets && camera_packets_apply(context);
     std::atomic<int> next_tile{0};
     std::atomic<bool> abort{false};
     std::atomic<bool> out_of_time{false};
@@ -51,6 +53,7 @@ RenderResult render_image(const RenderContext& context, const RenderOptions& opt
         std::unique_ptr<SplatFilm> film;
         if (splat_layers > 0) film = std::make_unique<SplatFilm>(width, height, splat_layers);
         set_current_splat_film(film.get());
+        TracedCameraRays traced[kPacketPixels];
         try {
             for (int tile = next_tile++; tile < tile_count && !abort; tile = next_tile++) {
                 int x0 = area.x + (tile % tiles_x) * kTile, y0 = area.y + (tile / tiles_x) * kTile;
@@ -62,7 +65,11 @@ RenderResult render_image(const RenderContext& context, const RenderOptions& opt
                             out_of_time = abort = true;
                             break;
                         }
+                        if (packets && (x - x0) % kPacketPixels == 0)
+                            trace_camera_packets(context, x, y, std::min(kPacketPixels, x1 - x), traced);
+                        if (packets) set_traced_camera_rays(&traced[(x - x0) % kPacketPixels]);
                         PixelResult pixel = context.stages.camera.raytrace_pixel(context, x, y);
+                        set_traced_camera_rays(nullptr);
                         // The last line of defence: whatever a stage returns, the
                         // film never stores NaN or Inf.
                         if (!pixel.radiance.is_finite()) {
@@ -77,6 +84,7 @@ RenderResult render_image(const RenderContext& context, const RenderOptions& opt
                 progress.advance(uint64_t(x1 - x0) * (y1 - y0));
             }
         } catch (...) {
+            set_traced_camera_rays(nullptr);
             std::lock_guard<std::mutex> lock(merge_mutex);
             if (!failure) failure = std::current_exception();
             abort = true;

@@ -25,6 +25,9 @@ struct RenderOptions {
     bool show_progress = false;       ///< progress bar on stderr
     std::optional<PixelRect> cell;    ///< -p: render only these pixels (others stay black)
     double time_limit = 0;            ///< seconds; > 0: stop starting pixels after this long (bench's budget)
+    /// --packets on: camera rays traced in packets where camera_packets_apply
+    /// says they can be (render/camera_packets.h); the same image either way.
+    bool packets = false;
 };
 
 struct RenderResult {

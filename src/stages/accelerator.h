@@ -46,6 +46,9 @@ public:
         for (int i = 0; i < count; ++i)
             hits[i] = intersect(rays[i]);
     }
+    /// Whether intersect_packet shares one traversal among its rays (else
+    /// it traces them one by one, and packets only cost).
+    virtual bool shares_packet_traversal() const { return false; }
     virtual AcceleratorInfo info() const = 0;
 };
 

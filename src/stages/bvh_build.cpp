@@ -4,6 +4,7 @@
 #include <array>
 #include <cfloat>
 #include <cmath>
+#include <cstring>
 
 #include "core/error.h"
 #include "scene/scene.h"
@@ -45,66 +46,141 @@ namespace {
 constexpr double kTraversalCost = 1.0;
 constexpr double kIntersectionCost = 1.0;
 constexpr int kBins = 16;
+// Nodes of fewer primitives are split by an exact sweep instead of bins.
+constexpr int kSweepBelow = 16;
 // Below this depth every split is an object median (flat_bvh.h, "Robustness").
 constexpr int kMedianDepth = 48;
 
-// Boxes during the build have a fourth, unused lane, so that the compiler
-// can grow them with 4-wide vector min/max instructions (binning is most of
-// the build time).
+// The build works on 4-float vectors (GCC's vector extensions: SSE on
+// x86-64, plain code elsewhere): x, y, z and an unused fourth lane. Binning
+// is most of the build time, and with vectors one min and one max grow a
+// box, and one subtract, multiply and convert give a centroid's bins on all
+// three axes at once (as Embree's binner does; Wald 2007).
+typedef float F4 __attribute__((vector_size(16)));
+typedef int32_t I4 __attribute__((vector_size(16)));
 
-/// One primitive during the build: its float box, its centroid, its id.
-struct BuildPrimitive {
-    alignas(16) float lo[4];  ///< bounds, rounded outward (lane 3 unused)
-    alignas(16) float hi[4];
-    float c[3];   ///< centroid (only decides the side of a split)
-    uint32_t id;  ///< primitive id in the scene
-};
+/// MINPS and MAXPS: b when either is NaN.
+inline F4 vmin(F4 a, F4 b) { return a < b ? a : b; }
+inline F4 vmax(F4 a, F4 b) { return a > b ? a : b; }
 
-/// A float box that grows; empty when lo > hi.
-struct FloatBox {
-    alignas(16) float lo[4] = {INFINITY, INFINITY, INFINITY, INFINITY};
-    alignas(16) float hi[4] = {-INFINITY, -INFINITY, -INFINITY, -INFINITY};
-
-    void expand(const float l[4], const float h[4]) {
-        for (int a = 0; a < 4; ++a) {
-            lo[a] = l[a] < lo[a] ? l[a] : lo[a];
-            hi[a] = h[a] > hi[a] ? h[a] : hi[a];
-        }
+/// One primitive during the build, 32 bytes (the old 48-byte record with a
+/// stored centroid moved 1.5 times the memory in every partition): its
+/// float box rounded outward, and its id in the first vector's fourth lane.
+struct alignas(32) PrimRef {
+    F4 lo;  ///< x, y, z bounds; lane 3 holds the id's bits
+    F4 hi;  ///< lane 3 is 0
+    uint32_t id() const {
+        uint32_t i;
+        float f = lo[3];
+        std::memcpy(&i, &f, sizeof i);
+        return i;
     }
-    void expand(const FloatBox& b) { expand(b.lo, b.hi); }
+};
+static_assert(sizeof(PrimRef) == 32, "a build primitive is 32 bytes");
+
+/// lo with its fourth lane (the id) cleared.
+inline F4 lo_xyz(const PrimRef& p) {
+    const I4 mask = {-1, -1, -1, 0};
+    return F4(I4(p.lo) & mask);
+}
+
+/// The centroid used to bin and split: the float box's midpoint, clamped to
+/// the finite floats (a box reaching +-inf, in a scene beyond float range,
+/// gets a finite centroid; NaN becomes FLT_MAX). Only decides sides, so
+/// any consistent value is correct; the same function serves binning and
+/// partitioning, so both put a primitive on the same side.
+inline F4 centroid(const PrimRef& p) {
+    F4 c = (lo_xyz(p) + p.hi) * 0.5f;
+    const F4 big = {FLT_MAX, FLT_MAX, FLT_MAX, FLT_MAX};
+    return vmax(vmin(c, big), -big);  // NaN: vmin gives big
+}
+
+/// A float box that grows; empty when lo > hi. Lane 3 is ignored.
+struct Box4 {
+    F4 lo = {INFINITY, INFINITY, INFINITY, INFINITY};
+    F4 hi = {-INFINITY, -INFINITY, -INFINITY, -INFINITY};
+
+    void expand(F4 l, F4 h) {
+        lo = vmin(l, lo);
+        hi = vmax(h, hi);
+    }
+    void expand(F4 p) { expand(p, p); }
+    void expand(const Box4& b) { expand(b.lo, b.hi); }
     /// Surface area in double precision (float could overflow); 0 when empty.
     double area() const {
         if (lo[0] > hi[0]) return 0.0;
         double ex = double(hi[0]) - lo[0], ey = double(hi[1]) - lo[1], ez = double(hi[2]) - lo[2];
         return 2.0 * (ex * ey + ey * ez + ez * ex);
     }
+    int widest_axis() const {
+        F4 e = hi - lo;
+        int axis = 0;
+        for (int a = 1; a < 3; ++a)
+            if (e[a] > e[axis]) axis = a;
+        return axis;
+    }
 };
 
-/// Where to split a node, or that it is a leaf.
+/// Where to split a node, or that it is a leaf; with the SAH, also the
+/// children's boxes (the sweep's unions of bins), so no extra pass computes them.
 struct SplitChoice {
     bool leaf = false;
+    bool boxes_known = false;  ///< left/right and their centroid boxes are set
     int axis = 0;
     size_t mid = 0;  ///< the left child gets [begin, mid), the right [mid, end)
+    Box4 left, right, left_centroids, right_centroids;
 };
+
+/// Maps centroids to bins: bin = floor((c - origin) * scale), clamped to
+/// [0, kBins - 1], on the three axes at once.
+struct Binner {
+    F4 origin, scale;
+    Binner(const Box4& centroids) {
+        origin = centroids.lo;
+        F4 extent = centroids.hi - centroids.lo;
+        for (int a = 0; a < 4; ++a) scale[a] = a < 3 && extent[a] > 0 ? kBins / extent[a] : 0.0f;
+    }
+    /// (c - origin) * scale clamped to [0, kBins - 1] (NaN to 0).
+    F4 position(F4 c) const {
+        const F4 zero = {0, 0, 0, 0}, top = {kBins - 1, kBins - 1, kBins - 1, kBins - 1};
+        return vmin(vmax((c - origin) * scale, zero), top);
+    }
+    I4 bins(F4 c) const { return __builtin_convertvector(position(c), I4); }
+};
+
+/// float_down and float_up (flat_bvh.h) with a select instead of a branch
+/// on "did float() round the wrong way", which is a coin toss per
+/// coordinate: the same results, 6 mispredictions fewer per primitive.
+inline float round_down(double x) {
+    float f = float(x), d = next_float_down(f);
+    return double(f) > x ? d : f;
+}
+inline float round_up(double x) {
+    float f = float(x), u = next_float_up(f);
+    return double(f) < x ? u : f;
+}
 
 class Builder {
   public:
-    Builder(std::vector<BuildPrimitive> prims, int max_leaf, BvhSplit split, FlatBvh& out)
+    Builder(std::vector<PrimRef> prims, int max_leaf, BvhSplit split, FlatBvh& out)
         : prims_(std::move(prims)), max_leaf_(size_t(max_leaf)), split_(split), out_(out) {}
 
-    /// Emits the subtree over prims_[begin, end) at the end of out_.nodes
-    /// and returns the index of its root.
-    uint32_t build(size_t begin, size_t end, int depth) {
+    /// The boxes of prims_[begin, end) and of their centroids.
+    void bounds(size_t begin, size_t end, Box4& box, Box4& centroids) const {
+        box = Box4();
+        centroids = Box4();
+        for (size_t i = begin; i < end; ++i) {
+            box.expand(prims_[i].lo, prims_[i].hi);
+            centroids.expand(centroid(prims_[i]));
+        }
+    }
+
+    /// Emits the subtree over prims_[begin, end), whose box and centroid box
+    /// are given, at the end of out_.nodes and returns the index of its root.
+    uint32_t build(size_t begin, size_t end, int depth, const Box4& box, const Box4& centroids) {
         const uint32_t index = uint32_t(out_.nodes.size());
         out_.nodes.emplace_back();
         out_.depth = std::max(out_.depth, depth);
-
-        FloatBox box, centroids;
-        for (size_t i = begin; i < end; ++i) {
-            box.expand(prims_[i].lo, prims_[i].hi);
-            const float c[4] = {prims_[i].c[0], prims_[i].c[1], prims_[i].c[2], 0.0f};
-            centroids.expand(c, c);
-        }
         for (int a = 0; a < 3; ++a) {
             out_.nodes[index].bounds[a] = box.lo[a];
             out_.nodes[index].bounds[3 + a] = box.hi[a];
@@ -116,32 +192,31 @@ class Builder {
             node.offset = uint32_t(out_.primitives.size());
             node.count = uint16_t(end - begin);
             for (size_t i = begin; i < end; ++i)
-                out_.primitives.push_back(prims_[i].id);
+                out_.primitives.push_back(prims_[i].id());
             return index;
+        }
+        if (!choice.boxes_known) {
+            bounds(begin, choice.mid, choice.left, choice.left_centroids);
+            bounds(choice.mid, end, choice.right, choice.right_centroids);
         }
         // Depth-first: the left child is the next node; the right child's
         // index is known only once the left subtree is complete.
-        build(begin, choice.mid, depth + 1);
-        uint32_t right = build(choice.mid, end, depth + 1);
+        build(begin, choice.mid, depth + 1, choice.left, choice.left_centroids);
+        uint32_t right = build(choice.mid, end, depth + 1, choice.right, choice.right_centroids);
         out_.nodes[index].offset = right;
         out_.nodes[index].axis = uint8_t(choice.axis);
         return index;
     }
 
   private:
-    SplitChoice choose_split(size_t begin, size_t end, int depth, const FloatBox& box,
-                             const FloatBox& centroids) {
+    SplitChoice choose_split(size_t begin, size_t end, int depth, const Box4& box, const Box4& centroids) {
         const size_t n = end - begin;
         SplitChoice choice;
         if (n == 1) {
             choice.leaf = true;
             return choice;
         }
-        int axis = 0;
-        for (int a = 1; a < 3; ++a) {
-            if (centroids.hi[a] - centroids.lo[a] > centroids.hi[axis] - centroids.lo[axis])
-                axis = a;
-        }
+        const int axis = centroids.widest_axis();
         choice.axis = axis;
         if (!(centroids.hi[axis] > centroids.lo[axis])) {
             // All centroids coincide: no plane separates them. Keep leaves
@@ -164,85 +239,155 @@ class Builder {
             }
             float pivot = centroids.lo[axis] + 0.5f * (centroids.hi[axis] - centroids.lo[axis]);
             auto mid = std::partition(prims_.begin() + long(begin), prims_.begin() + long(end),
-                                      [&](const BuildPrimitive& p) { return p.c[axis] < pivot; });
+                                      [&](const PrimRef& p) { return centroid(p)[axis] < pivot; });
             choice.mid = size_t(mid - prims_.begin());
             // The midpoint can round onto the largest centroid: then halve by count.
             if (choice.mid == begin || choice.mid == end)
                 choice.mid = median_split(begin, end, axis);
             return choice;
         }
+        if (n < size_t(kSweepBelow) && box.area() > 0) return sweep_split(begin, end, box);
         return sah_split(begin, end, box, centroids);
+    }
+
+    /// Exact object-split SAH for a small node: on each axis the primitives
+    /// sorted by centroid and every one of the n - 1 splits of that order
+    /// weighed (the sweep of Wald, Boulos and Shirley 2007). Cheaper than
+    /// binning here (no 48 bins to clear and sweep per node; about half the
+    /// nodes have at most four primitives) and never a worse split than the
+    /// bins would find, which can only offer a subset of these splits.
+    SplitChoice sweep_split(size_t begin, size_t end, const Box4& box) {
+        const int n = int(end - begin);
+        PrimRef* p = prims_.data() + begin;
+        F4 c[kSweepBelow];
+        for (int i = 0; i < n; ++i) c[i] = centroid(p[i]);
+        const double parent_area = box.area();
+        double best_cost = INFINITY;
+        int best_axis = 0, best_k = 0;
+        uint8_t order[3][kSweepBelow];
+        for (int a = 0; a < 3; ++a) {
+            // Sorted by centroid, ties by position, through each one's rank
+            // (how many come before it): no branches, which an insertion
+            // sort's mispredictions made the larger cost here.
+            uint8_t* o = order[a];
+            for (int i = 0; i < n; ++i) {
+                int rank = 0;
+                for (int j = 0; j < n; ++j) rank += (c[j][a] < c[i][a]) | ((c[j][a] == c[i][a]) & (j < i));
+                o[rank] = uint8_t(i);
+            }
+            double right_area[kSweepBelow];
+            Box4 right;
+            for (int k = n - 1; k > 0; --k) {
+                right.expand(p[o[k]].lo, p[o[k]].hi);
+                right_area[k] = right.area();
+            }
+            Box4 left;
+            for (int k = 1; k < n; ++k) {  // left: o[0 .. k), right: o[k .. n)
+                left.expand(p[o[k - 1]].lo, p[o[k - 1]].hi);
+                double cost = kTraversalCost +
+                              kIntersectionCost * (left.area() * k + right_area[k] * (n - k)) / parent_area;
+                const bool better = cost < best_cost;  // selects, not a branch
+                best_cost = better ? cost : best_cost;
+                best_axis = better ? a : best_axis;
+                best_k = better ? k : best_k;
+            }
+        }
+        SplitChoice choice;
+        if (size_t(n) <= max_leaf_ && kIntersectionCost * double(n) <= best_cost) {
+            choice.leaf = true;
+            return choice;
+        }
+        // Reorder the primitives as the best axis sorted them.
+        PrimRef sorted[kSweepBelow];
+        for (int i = 0; i < n; ++i) sorted[i] = p[order[best_axis][i]];
+        for (int i = 0; i < n; ++i) {
+            p[i] = sorted[i];
+            Box4& b = i < best_k ? choice.left : choice.right;
+            b.expand(sorted[i].lo, sorted[i].hi);
+            (i < best_k ? choice.left_centroids : choice.right_centroids).expand(c[order[best_axis][i]]);
+        }
+        choice.axis = best_axis;
+        choice.mid = begin + size_t(best_k);
+        choice.boxes_known = true;
+        return choice;
     }
 
     size_t median_split(size_t begin, size_t end, int axis) {
         size_t mid = begin + (end - begin) / 2;
-        std::nth_element(prims_.begin() + long(begin), prims_.begin() + long(mid),
-                         prims_.begin() + long(end),
-                         [axis](const BuildPrimitive& a, const BuildPrimitive& b) {
-                             return a.c[axis] < b.c[axis];
-                         });
+        std::nth_element(prims_.begin() + long(begin), prims_.begin() + long(mid), prims_.begin() + long(end),
+                         [axis](const PrimRef& a, const PrimRef& b) { return centroid(a)[axis] < centroid(b)[axis]; });
         return mid;
     }
 
     /// Binned SAH (Wald 2007): one pass drops every centroid into one of
     /// kBins equal slices of the centroid bounds on each axis; sweeps over
     /// the bins then give the cost of all kBins - 1 planes per axis.
-    SplitChoice sah_split(size_t begin, size_t end, const FloatBox& box,
-                          const FloatBox& centroids) {
+    SplitChoice sah_split(size_t begin, size_t end, const Box4& box, const Box4& centroids) {
         const size_t n = end - begin;
-        struct Bin {
-            FloatBox box;
-            uint32_t count = 0;
-        };
-        std::array<std::array<Bin, kBins>, 3> bins{};
-        float origin[3], scale[3];
-        for (int a = 0; a < 3; ++a) {
-            origin[a] = centroids.lo[a];
-            float extent = centroids.hi[a] - centroids.lo[a];
-            scale[a] = extent > 0 ? kBins / extent : 0.0f;
-        }
-        for (size_t i = begin; i < end; ++i) {
-            const BuildPrimitive& p = prims_[i];
+        // Two sets of bins, for even and odd primitives, merged at the end:
+        // neighbouring primitives usually fall into the same bins, and with
+        // one set each update would wait for the previous one's store.
+        Box4 bins[3][kBins], odd[3][kBins];
+        uint32_t counts[3][kBins] = {}, odd_counts[3][kBins] = {};
+        const Binner binner(centroids);
+        size_t i = begin;
+        for (; i + 1 < end; i += 2) {
+            const PrimRef& p = prims_[i];
+            const PrimRef& q = prims_[i + 1];
+            const I4 b = binner.bins(centroid(p));
+            const I4 d = binner.bins(centroid(q));
             for (int a = 0; a < 3; ++a) {
-                Bin& bin = bins[a][bin_index(p.c[a], origin[a], scale[a])];
-                bin.box.expand(p.lo, p.hi);
-                ++bin.count;
+                bins[a][b[a]].expand(p.lo, p.hi);
+                ++counts[a][b[a]];
+                odd[a][d[a]].expand(q.lo, q.hi);
+                ++odd_counts[a][d[a]];
             }
         }
+        if (i < end) {
+            const I4 b = binner.bins(centroid(prims_[i]));
+            for (int a = 0; a < 3; ++a) {
+                bins[a][b[a]].expand(prims_[i].lo, prims_[i].hi);
+                ++counts[a][b[a]];
+            }
+        }
+        for (int a = 0; a < 3; ++a)
+            for (int k = 0; k < kBins; ++k) {
+                bins[a][k].expand(odd[a][k]);
+                counts[a][k] += odd_counts[a][k];
+            }
 
         double parent_area = box.area();
         double best_cost = INFINITY;
         int best_axis = -1, best_plane = 0;
         for (int a = 0; a < 3; ++a) {
-            if (scale[a] == 0.0f) continue;
+            if (binner.scale[a] == 0.0f) continue;
             // right_area[k], right_count[k]: everything in bins k .. kBins-1.
-            std::array<double, kBins> right_area{};
-            std::array<uint32_t, kBins> right_count{};
-            FloatBox right;
+            double right_area[kBins];
+            uint32_t right_count[kBins];
+            Box4 right;
             uint32_t count = 0;
             double area = 0;
             for (int k = kBins - 1; k > 0; --k) {
                 // An empty bin changes nothing (most bins of a small node are empty).
-                if (bins[a][k].count > 0) {
-                    right.expand(bins[a][k].box);
-                    count += bins[a][k].count;
+                if (counts[a][k] > 0) {
+                    right.expand(bins[a][k]);
+                    count += counts[a][k];
                     area = right.area();
                 }
                 right_area[k] = area;
                 right_count[k] = count;
             }
-            FloatBox left;
+            Box4 left;
             count = 0;
             for (int k = 1; k < kBins; ++k) {  // the plane between bins k-1 and k
                 // Past an empty bin the plane splits as the previous one did.
-                if (bins[a][k - 1].count == 0) continue;
-                left.expand(bins[a][k - 1].box);
-                count += bins[a][k - 1].count;
+                if (counts[a][k - 1] == 0) continue;
+                left.expand(bins[a][k - 1]);
+                count += counts[a][k - 1];
                 if (right_count[k] == 0) break;
-                double cost =
-                    kTraversalCost + kIntersectionCost *
-                                         (left.area() * count + right_area[k] * right_count[k]) /
-                                         parent_area;
+                double cost = kTraversalCost + kIntersectionCost *
+                                                   (left.area() * count + right_area[k] * right_count[k]) /
+                                                   parent_area;
                 if (cost < best_cost) {
                     best_cost = cost;
                     best_axis = a;
@@ -255,10 +400,7 @@ class Builder {
         // A box of zero area (collinear primitives) gives the SAH nothing to
         // weigh; halve by count then.
         if (best_axis < 0 || !(parent_area > 0)) {
-            int axis = 0;
-            for (int a = 1; a < 3; ++a)
-                if (centroids.hi[a] - centroids.lo[a] > centroids.hi[axis] - centroids.lo[axis])
-                    axis = a;
+            const int axis = centroids.widest_axis();
             choice.leaf = n <= max_leaf_;
             choice.axis = axis;
             if (!choice.leaf) choice.mid = median_split(begin, end, axis);
@@ -268,26 +410,50 @@ class Builder {
             choice.leaf = true;
             return choice;
         }
+        // The children's boxes are the unions of their bins; their centroid
+        // boxes are gathered while partitioning (Hoare's scheme: swap the
+        // first right-side primitive from the front with the last left-side
+        // one from the back).
         const int a = best_axis;
-        auto mid = std::partition(prims_.begin() + long(begin), prims_.begin() + long(end),
-                                  [&](const BuildPrimitive& p) {
-                                      return bin_index(p.c[a], origin[a], scale[a]) < best_plane;
-                                  });
+        for (int k = 0; k < kBins; ++k) (k < best_plane ? choice.left : choice.right).expand(bins[a][k]);
+        PrimRef* lo = prims_.data() + begin;
+        PrimRef* hi = prims_.data() + end;
+        switch (a) {  // the axis as a constant: its lane is read without a trip through memory
+            case 0: lo = partition<0>(lo, hi, binner, best_plane, choice); break;
+            case 1: lo = partition<1>(lo, hi, binner, best_plane, choice); break;
+            default: lo = partition<2>(lo, hi, binner, best_plane, choice); break;
+        }
         choice.axis = a;
-        choice.mid = size_t(mid - prims_.begin());
+        choice.mid = size_t(lo - prims_.data());
+        choice.boxes_known = true;
         return choice;
     }
 
-    /// The bin of a centroid coordinate; NaN-safe and clamped to [0, kBins).
-    static int bin_index(float c, float origin, float scale) {
-        float x = (c - origin) * scale;
-        // std::max(0, NaN) is 0, so a NaN lands in bin 0 instead of being
-        // converted to int (undefined behaviour).
-        x = std::min(float(kBins - 1), std::max(0.0f, x));
-        return int(x);
+    /// Hoare's partition of [lo, hi) by the bin on axis A (left: below
+    /// `plane`), gathering both sides' centroid boxes; returns the first
+    /// primitive of the right side.
+    template <int A>
+    static PrimRef* partition(PrimRef* lo, PrimRef* hi, const Binner& binner, int plane, SplitChoice& choice) {
+        // Binner::bins without the conversion: for x in [0, kBins - 1],
+        // int(x) < plane exactly when x < plane.
+        const float limit = float(plane);
+        auto side = [&](F4 c) { return binner.position(c)[A] < limit; };
+        while (true) {
+            F4 c;
+            while (lo < hi && side(c = centroid(*lo))) {
+                choice.left_centroids.expand(c);
+                ++lo;
+            }
+            while (lo < hi && !side(c = centroid(*(hi - 1)))) {
+                choice.right_centroids.expand(c);
+                --hi;
+            }
+            if (lo == hi) return lo;
+            std::swap(*lo, *(hi - 1));
+        }
     }
 
-    std::vector<BuildPrimitive> prims_;
+    std::vector<PrimRef> prims_;
     size_t max_leaf_;
     BvhSplit split_;
     FlatBvh& out_;
@@ -304,21 +470,35 @@ FlatBvh build_flat_bvh(const Scene& scene, const AcceleratorSettings& settings) 
     const uint32_t n = scene.primitive_count();
     if (n == 0) return out;
 
-    std::vector<BuildPrimitive> prims(n);
+    std::vector<PrimRef> prims(n);
+    Box4 box, centroids;
     for (uint32_t i = 0; i < n; ++i) {
-        BBox b = padded_primitive_bounds(scene, i);
-        BuildPrimitive& p = prims[i];
-        round_box_outward(b, p.lo, p.hi);
-        p.lo[3] = p.hi[3] = 0.0f;
-        Vec3 c = b.centroid();
-        for (int a = 0; a < 3; ++a)
-            p.c[a] = float(std::clamp(c[a], -double(FLT_MAX), double(FLT_MAX)));
-        p.id = i;
+        BBox b;
+        if (scene.is_sphere(i)) {
+            b = padded_primitive_bounds(scene, i);
+        } else {
+            // padded_primitive_bounds inlined for triangles (the same
+            // operations: x * 2^-32 is ldexp(x, -32), both exact or
+            // correctly rounded), without copying the triangle's normals.
+            const TriangleRecord& r = scene.triangles[i];
+            b = BBox(scene.positions[r.v[0]], scene.positions[r.v[1]]);
+            b.expand(scene.positions[r.v[2]]);
+            double scale = std::max(max_component(abs(b.min)), max_component(abs(b.max)));
+            Vec3 margin(scale * 0x1p-32);
+            b = BBox(b.min - margin, b.max + margin);
+        }
+        float id;
+        std::memcpy(&id, &i, sizeof id);
+        prims[i].lo = F4{round_down(b.min.x), round_down(b.min.y), round_down(b.min.z), id};
+        prims[i].hi = F4{round_up(b.max.x), round_up(b.max.y), round_up(b.max.z), 0.0f};
+        box.expand(prims[i].lo, prims[i].hi);
+        centroids.expand(centroid(prims[i]));
     }
-    out.nodes.reserve(n);
+    // At most 2n - 1 nodes: reserving them keeps emplace_back from copying.
+    out.nodes.reserve(2 * size_t(n) - 1);
     out.primitives.reserve(n);
     Builder builder(std::move(prims), settings.max_leaf, out.split, out);
-    builder.build(0, n, 0);
+    builder.build(0, n, 0, box, centroids);
     out.nodes.shrink_to_fit();
     return out;
 }

@@ -146,8 +146,9 @@ class InlineTriangleSlots {
                 generic_[slot] = 1;
                 continue;
             }
-            Triangle tri = scene.triangle(prim);
-            Vec3 ng = cross(tri.p1 - tri.p0, tri.p2 - tri.p0);
+            const TriangleRecord& r = scene.triangles[prim];  // the corners only, not the normals
+            const Vec3 &p0 = scene.positions[r.v[0]], &p1 = scene.positions[r.v[1]], &p2 = scene.positions[r.v[2]];
+            Vec3 ng = cross(p1 - p0, p2 - p0);
             if (!(ng / ng.norm()).is_finite()) generic_[slot] = 1;
         }
     }
@@ -193,8 +194,9 @@ class InlineMollerTrumbore : public InlineTriangleSlots {
         : InlineTriangleSlots(scene, stage, order), triangles_(order.size()) {
         for (size_t slot = 0; slot < order.size(); ++slot) {
             if (scene.is_sphere(order[slot])) continue;
-            Triangle tri = scene.triangle(order[slot]);
-            triangles_[slot] = {tri.p0, tri.p1 - tri.p0, tri.p2 - tri.p0};
+            const TriangleRecord& r = scene.triangles[order[slot]];
+            const Vec3 &p0 = scene.positions[r.v[0]], &p1 = scene.positions[r.v[1]], &p2 = scene.positions[r.v[2]];
+            triangles_[slot] = {p0, p1 - p0, p2 - p0};
         }
     }
 

@@ -56,6 +56,8 @@ class WideReferenceBvh final : public Accelerator {
         return best;
     }
 
+    bool shares_packet_traversal() const override { return !nodes_.empty(); }
+
     void intersect_packet(const Ray* rays, int count, std::optional<Hit>* hits) const override {
         if (nodes_.empty() || count <= 1) {
             for (int i = 0; i < count; ++i)

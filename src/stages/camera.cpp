@@ -28,13 +28,17 @@ namespace {
 
 constexpr uint64_t kDecisionStream = 0x73746F70ull;  // "stop": the split rule's own samples
 
-/// The radiance of one camera ray through (x + jitter.x, y + jitter.y);
-/// a sample that is not finite is counted and dropped (--stats reports it).
-Color camera_sample(const RenderContext& context, int x, int y, Vec2 jitter, Vec2 lens, Rng& rng) {
+/// The camera ray through (x + jitter.x, y + jitter.y).
+Ray camera_ray(const RenderContext& context, int x, int y, Vec2 jitter, Vec2 lens) {
     const Scene& scene = context.scene;
     double u = (x + jitter.x) / scene.film_width;
     double v = 1.0 - (y + jitter.y) / scene.film_height;  // image rows run top to bottom
-    Ray ray = context.stages.camera.generate_ray(scene.camera, u, v, lens);
+    return context.stages.camera.generate_ray(scene.camera, u, v, lens);
+}
+
+/// The radiance along `ray`; a sample that is not finite is counted and
+/// dropped (--stats reports it).
+Color sample_radiance(const RenderContext& context, const Ray& ray, Rng& rng) {
     Color L = context.radiance(ray, rng);
     if (!L.is_finite()) {
         ++thread_counters().nonfinite_samples;
@@ -44,6 +48,22 @@ Color camera_sample(const RenderContext& context, int x, int y, Vec2 jitter, Vec
 }
 
 }  // namespace
+
+Ray sample_camera_ray(const RenderContext& context, int x, int y, int index, Rng& rng) {
+    // The dimensions: 0-1 the point in the pixel (its centre when spp is 1,
+    // as CS184), 2-3 the lens (a pinhole skips them; without a sampler the
+    // lens has a stream of its own, so a pinhole leaves every other number
+    // of the sample where it was), the bounces from 4 on.
+    const RenderSettings& settings = context.settings;
+    const uint64_t pixel = uint64_t(y) * uint64_t(context.scene.film_width) + uint64_t(x);
+    Vec2 jitter = settings.spp == 1 ? Vec2(0.5, 0.5) : rng.next_2d();
+    rng.seek_dimension(2);
+    Vec2 lens(0.5, 0.5);
+    if (context.code_paths.lens_sampling)
+        lens = rng.sampler() ? rng.next_2d() : Rng::lens(settings.seed, pixel, uint64_t(index)).next_2d();
+    rng.seek_dimension(4);
+    return camera_ray(context, x, y, jitter, lens);
+}
 
 PixelResult raytrace_pixel(const RenderContext& context, int x, int y) {
     const RenderSettings& settings = context.settings;
@@ -65,20 +85,23 @@ PixelResult raytrace_pixel(const RenderContext& context, int x, int y) {
         stats.s2 += illuminance * illuminance;
         ++stats.n;
     };
+    const TracedCameraRays* traced = traced_camera_rays();
     for (int i = 0; n < settings.spp; ++i) {
         // Sample i: its own generator (core/rng.h), so the image does not
-        // depend on the thread count or on the order of the pixels. The
-        // dimensions: 0-1 the point in the pixel (its centre when spp is 1,
-        // as CS184), 2-3 the lens (a pinhole skips them; without a sampler
-        // the lens has a stream of its own, so a pinhole leaves every other
-        // number of the sample where it was), the bounces from 4 on.
-        Rng rng = context.sample_generator(x, y, i);
-        Vec2 jitter = settings.spp == 1 ? Vec2(0.5, 0.5) : rng.next_2d();
-        rng.seek_dimension(2);
-        Vec2 lens(0.5, 0.5);
-        if (lens_sampling) lens = rng.sampler() ? rng.next_2d() : Rng::lens(settings.seed, pixel, uint64_t(i)).next_2d();
-        rng.seek_dimension(4);
-        Color L = camera_sample(context, x, y, jitter, lens, rng);
+        // depend on the thread count or on the order of the pixels (its
+        // dimensions: sample_camera_ray).
+        // With --packets on the renderer drew the first samples' rays
+        // already (and traced them: render/camera_packets.h).
+        Rng rng;
+        Ray ray;
+        if (traced && size_t(i) < traced->rays.size()) {
+            rng = traced->generators[size_t(i)];
+            ray = traced->rays[size_t(i)];
+        } else {
+            rng = context.sample_generator(x, y, i);
+            ray = sample_camera_ray(context, x, y, i, rng);
+        }
+        Color L = sample_radiance(context, ray, rng);
         sum += L;
         ++averaged;
         ++n;
@@ -88,7 +111,7 @@ PixelResult raytrace_pixel(const RenderContext& context, int x, int y) {
             Rng decision = Rng::substream(settings.seed, pixel, uint64_t(i), kDecisionStream);
             Vec2 decision_jitter = decision.next_2d();
             Vec2 decision_lens = lens_sampling ? decision.next_2d() : Vec2(0.5, 0.5);
-            observe(camera_sample(context, x, y, decision_jitter, decision_lens, decision));
+            observe(sample_radiance(context, camera_ray(context, x, y, decision_jitter, decision_lens), decision));
             ++n;
         }
         // Adaptive sampling (Part 5): test for convergence after each batch.

@@ -26,6 +26,7 @@
 
 #include "core/color.h"
 #include "core/ray.h"
+#include "core/rng.h"
 #include "core/vec3.h"
 #include "scene/camera.h"
 
@@ -55,6 +56,11 @@ struct CameraStage {
 namespace reference {
 Ray generate_ray(const Camera& camera, double x, double y, Vec2 lens_sample);
 PixelResult raytrace_pixel(const RenderContext& context, int x, int y);
+/// The camera ray of sample `index` of pixel (x, y) as raytrace_pixel draws
+/// it, from `rng` = context.sample_generator(x, y, index), which is left at
+/// dimension 4, where the bounces start. The renderer's packets of camera
+/// rays (--packets on, render/camera_packets.h) draw their rays here too.
+Ray sample_camera_ray(const RenderContext& context, int x, int y, int index, Rng& rng);
 }  // namespace reference
 
 namespace student {

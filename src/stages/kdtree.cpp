@@ -33,13 +33,6 @@ void build_range(KdTree& tree, std::vector<uint32_t>& order, const std::vector<V
 /// bucket): 16 to 32 measured alike (docs/photon_mapping.md).
 constexpr size_t kScanBelow = 16;
 
-/// A candidate of a k-nearest query: a position in tree order, not yet an
-/// id (ids are looked up once, for the k answers, not for every candidate).
-struct Candidate {
-    double dist2;  ///< squared distance to the query point, scene units^2
-    uint32_t at;   ///< index into tree.points
-};
-
 /// A subtree still to visit, with what the pruning test needs: the
 /// squared distance from p to the subtree's cell, the offsets that sum to
 /// it (Arya and Mount's incremental distance, 1993: crossing a plane
@@ -54,7 +47,11 @@ struct PendingCell {
 };
 
 /// One k-nearest query (reference): the (at most) k points within `bound`
-/// nearest to p, nearest first, written to best[0, count); returns count.
+/// nearest to p, nearest first: their squared distances written to
+/// dist2[0, count) and their positions in tree order (not yet ids: ids are
+/// looked up once, for the answers) to at[0, count); returns count.
+/// dist2[-1] must be readable: it is set to -1, a sentinel below every
+/// distance, so that the insertion loop needs no test for the front.
 ///
 /// Why it is shaped this way, measured by `bench kdtree` and perf
 /// (docs/photon_mapping.md): with k = 50 a query looks at about 400
@@ -62,13 +59,16 @@ struct PendingCell {
 /// bookkeeping and to cache misses on the descent, not to the distances.
 /// Hence: the best k kept as a sorted array (insertion from the back, so
 /// the answer needs no final sort; a heap plus a sort cost more at this
-/// k), a bucket's distances computed first and filtered without branches,
+/// k), distances and positions in two arrays (a shift moves one double
+/// and one index, not a padded pair), the first k taken best-first (see
+/// below), a bucket's distances computed first and filtered without branches,
 /// an explicit stack instead of recursion, and the two children
 /// prefetched while the parent is examined. The state lives in locals, not
 /// in members, so that the compiler keeps the bound in a register.
-size_t knn_search(const KdTree& tree, const Vec3& p, size_t k, double bound, Candidate* best) {
+size_t knn_search(const KdTree& tree, const Vec3& p, size_t k, double bound, double* best_dist2, uint32_t* best_at) {
     const Vec3* points = tree.points.data();
-    size_t count = 0;  // how many of best are filled
+    size_t count = 0;  // how many of the best are filled
+    best_dist2[-1] = -1;
 
     // Keeps a point within the bound: inserted into the sorted best from
     // the back (the farthest drops out once k are held); the bound then
@@ -76,9 +76,13 @@ size_t knn_search(const KdTree& tree, const Vec3& p, size_t k, double bound, Can
     auto consider = [&](double dist2, uint32_t at) {
         if (!(dist2 <= bound)) return;  // written so that a NaN distance is never kept
         size_t i = count < k ? count++ : k - 1;
-        for (; i > 0 && best[i - 1].dist2 > dist2; --i) best[i] = best[i - 1];
-        best[i] = {dist2, at};
-        if (count == k) bound = best[k - 1].dist2;
+        for (; best_dist2[i - 1] > dist2; --i) {
+            best_dist2[i] = best_dist2[i - 1];
+            best_at[i] = best_at[i - 1];
+        }
+        best_dist2[i] = dist2;
+        best_at[i] = at;
+        if (count == k) bound = best_dist2[k - 1];
     };
     // Every point of the bucket [lo, hi), at most kScanBelow of them.
     auto scan_bucket = [&](uint32_t lo, uint32_t hi) {
@@ -96,7 +100,12 @@ size_t knn_search(const KdTree& tree, const Vec3& p, size_t k, double bound, Can
         for (uint32_t s = 0; s < m; ++s) consider(dist2[inside[s]], lo + inside[s]);
     };
 
-    PendingCell stack[64];  // at most one entry per level, and a level per bit of a 32-bit size
+    // A descent pushes at most one cell per level, and a 32-bit size has
+    // at most 32 levels. Depth-first, the stack holds one path; a
+    // best-first choice leaves older cells below a new descent, so it is
+    // made only while a whole descent still fits.
+    constexpr int kMaxDescent = 32, kStackSize = 128;
+    PendingCell stack[kStackSize];
     int top = 0;
     // The cell being descended, in locals (registers): its range, squared
     // distance from p and per-axis offsets.
@@ -132,6 +141,17 @@ size_t knn_search(const KdTree& tree, const Vec3& p, size_t k, double bound, Can
             }
         }
         scan_bucket(lo, hi);
+        // Until k points are held the bound is infinite and every point
+        // found is kept, so the first k decide how tight the bound starts:
+        // take them from the nearest pending cell (best-first), not from
+        // the last one pushed. Afterwards the stack's order (depth-first,
+        // nearer side first) is as good and costs nothing.
+        if (count < k && top > 1 && top + kMaxDescent <= kStackSize) {
+            int nearest = top - 1;
+            for (int i = top - 2; i >= 0; --i)
+                if (stack[i].dist2 < stack[nearest].dist2) nearest = i;
+            std::swap(stack[nearest], stack[top - 1]);
+        }
         // Back up to the nearest pending cell that can still hold a better
         // point. Its node point lies on its boundary, so it is no nearer
         // than the cell: both are skipped together.
@@ -227,12 +247,18 @@ KdTree build_kdtree(const std::vector<Vec3>& points) {
 void k_nearest(const KdTree& tree, const Vec3& p, int k, double max_dist2, std::vector<Neighbor>& out) {
     out.clear();
     if (k <= 0 || tree.empty() || max_dist2 < 0) return;
-    // Reused across queries on this thread: no allocation per query.
-    thread_local std::vector<Candidate> best;
+    // Reused across queries on this thread: no allocation per query. One
+    // more distance than kept, for the sentinel in front.
+    thread_local std::vector<double> dist2;
+    thread_local std::vector<uint32_t> at;
     const size_t kept = std::min(size_t(k), tree.size());
-    if (best.size() < kept) best.resize(kept);
-    const size_t found = knn_search(tree, p, kept, max_dist2, best.data());
-    for (size_t i = 0; i < found; ++i) out.push_back({tree.ids[best[i].at], best[i].dist2});
+    if (at.size() < kept) {
+        dist2.resize(kept + 1);
+        at.resize(kept);
+    }
+    const size_t found = knn_search(tree, p, kept, max_dist2, dist2.data() + 1, at.data());
+    out.resize(found);
+    for (size_t i = 0; i < found; ++i) out[i] = {tree.ids[at[i]], dist2[i + 1]};
 }
 
 }  // namespace reference

@@ -24,14 +24,15 @@
 //   k_nearest      the k closest points within a maximum distance, sorted
 //                  nearest first (the best k found so far kept sorted; a
 //                  subtree is skipped when its cell lies farther than the
-//                  current k-th distance)
+//                  current k-th distance; the first k come from the
+//                  nearest cells, best-first, so that bound starts tight)
 //   within_radius  every point within a fixed distance (SPPM's query)
 // Distances are squared Euclidean; a point at exactly the maximum distance
 // is found. Ties at equal distance may be broken either way.
 //
 // Tests: tests/unit/test_kdtree.cpp (every query against brute force on
-// random points, duplicates, points on a plane, one point, none; the
-// layout's invariant); cost in `bench photons`.
+// random points, duplicates, points on a plane, one point, none, k in the
+// thousands; the layout's invariant); cost in `bench kdtree`.
 #pragma once
 
 #include <cstdint>

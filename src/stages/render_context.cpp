@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "core/counters.h"
 #include "core/math.h"
@@ -133,8 +134,44 @@ Rng RenderContext::sample_generator(int x, int y, int index) const {
     return Rng(*sampler, uint32_t(x), uint32_t(y), pixel, uint64_t(index));
 }
 
+namespace {
+thread_local TracedCameraRays* t_traced_camera_rays = nullptr;
+
+/// The same bits (so -0.0 is not 0.0: the slab test tells them apart).
+bool same_ray(const Ray& a, const Ray& b) {
+    const double x[8] = {a.o.x, a.o.y, a.o.z, a.d.x, a.d.y, a.d.z, a.t_min, a.t_max};
+    const double y[8] = {b.o.x, b.o.y, b.o.z, b.d.x, b.d.y, b.d.z, b.t_min, b.t_max};
+    return std::memcmp(x, y, sizeof x) == 0;
+}
+}  // namespace
+
+const std::optional<Hit>* TracedCameraRays::take(const Ray& ray) {
+    for (size_t i = next; i < rays.size() && i < next + 2; ++i) {
+        if (same_ray(rays[i], ray)) {
+            next = i + 1;
+            return &hits[i];
+        }
+    }
+    return nullptr;
+}
+
+void set_traced_camera_rays(TracedCameraRays* list) {
+    t_traced_camera_rays = list;
+}
+
+const TracedCameraRays* traced_camera_rays() {
+    return t_traced_camera_rays;
+}
+
 std::optional<SurfaceInteraction> RenderContext::intersect(const Ray& ray) const {
     ++thread_counters().closest_hit_rays;
+    if (TracedCameraRays* traced = t_traced_camera_rays) {
+        if (const std::optional<Hit>* hit = traced->take(ray)) {
+            ++thread_counters().packet_rays;
+            if (!*hit) return std::nullopt;
+            return make_interaction(scene, ray, **hit);
+        }
+    }
     std::optional<Hit> hit = accelerator.intersect(ray);
     if (!hit) return std::nullopt;
     return make_interaction(scene, ray, *hit);

@@ -7,6 +7,7 @@
 
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include "core/color.h"
 #include "core/rng.h"
@@ -69,6 +70,34 @@ public:
     /// surface and a wall is lit the same from both sides.
     BSDF bsdf_at(const SurfaceInteraction& isect) const;
 };
+
+/// Closest hits of camera rays traced ahead of the integrator, in packets
+/// (`--packets on`, render/camera_packets.h). While a thread's list is set,
+/// RenderContext::intersect answers a ray from it when the ray is the next
+/// one listed (the same origin, direction and interval; the hit is the one
+/// intersect would return, bit for bit), so the image is the same with or
+/// without packets; any other ray is traced as usual.
+struct TracedCameraRays {
+    std::vector<Ray> rays;                 ///< rays[i]: camera ray of sample i of the pixel
+    std::vector<Rng> generators;           ///< sample i's generator after drawing rays[i]
+    std::vector<std::optional<Hit>> hits;  ///< hits[i]: accelerator.intersect(rays[i])
+    size_t next = 0;                       ///< the first ray not yet asked for
+    /// The hit of `ray` when it is the next listed ray or the one after (a
+    /// camera ray whose integrator asked nothing is passed over); else null.
+    const std::optional<Hit>* take(const Ray& ray);
+    void clear() {
+        rays.clear();
+        generators.clear();
+        hits.clear();
+        next = 0;
+    }
+};
+
+/// Sets this thread's list of traced camera rays; null: none.
+void set_traced_camera_rays(TracedCameraRays* list);
+/// This thread's list (reference::raytrace_pixel takes its samples' rays
+/// and generators from it rather than drawing them again); null: none.
+const TracedCameraRays* traced_camera_rays();
 
 /// The interaction record for `hit`, found by `ray`: the hit point (from
 /// barycentrics for triangles, re-projected for spheres) with its error

@@ -104,3 +104,65 @@ TEST_CASE("bench scaling runs on small sizes") {
     CHECK(r.code == 0);
     CHECK(r.output.find("log2 n") != std::string::npos);
 }
+
+namespace {
+
+std::string file_bytes(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+/// "from_packets": N of a --stats file.
+long from_packets(const std::string& stats_path) {
+    std::string text = file_bytes(stats_path);
+    size_t at = text.find("\"from_packets\":");
+    if (at == std::string::npos) return -1;
+    return std::atol(text.c_str() + at + std::string("\"from_packets\":").size());
+}
+
+}  // namespace
+
+TEST_CASE("pathtracer --packets on gives --packets off's image bit for bit, with camera rays answered from packets") {
+    // Partial packets (width 37), bounces, adaptive sampling (the split
+    // rule's decision samples are not packed), the thin lens, a fisheye's
+    // rays that see nothing, another sampler, two threads.
+    const char* const cases[] = {
+        "-r 37 21 -s 1 --integrator normals cbox.json",
+        "-r 24 16 -s 4 -m 3 --integrator path cbox.json",
+        "-r 24 16 -s 8 -a 4 0.05 -m 2 cbox_knot.json",
+        "-r 24 16 -s 8 -a 4 0.05 --adaptive cs184 cbox.json",
+        "-r 24 16 -s 4 -b 0.05 -d 3 -m 2 cbox_spheres.json",
+        "-r 24 16 -s 2 camera_fisheye.json",
+        "-r 24 16 -s 4 --sampler independent -t 2 -m 2 cbox.json",
+    };
+    for (const char* args : cases) {
+        CAPTURE(args);
+        std::string a(args);
+        size_t space = a.rfind(' ');
+        std::string flags = a.substr(0, space), file = scene(a.substr(space + 1));
+        std::string images[2];
+        long packed[2];
+        for (int on = 0; on < 2; ++on) {
+            std::string name = std::string("packets_") + (on ? "on" : "off");
+            Run r = run(bin("pathtracer") + " -q " + flags + " --packets " + (on ? "on" : "off") + " -f " +
+                        out(name + ".png") + " --hdr " + out(name + ".pfm") + " --stats " + out(name + ".json") +
+                        " " + file);
+            REQUIRE(r.code == 0);
+            images[on] = file_bytes(out(name + ".pfm"));
+            packed[on] = from_packets(out(name + ".json"));
+        }
+        CHECK(!images[0].empty());
+        CHECK(images[0] == images[1]);
+        CHECK(packed[0] == 0);
+        CHECK(packed[1] > 0);
+    }
+}
+
+TEST_CASE("--packets takes on or off; anything else is one line and exit code 2") {
+    Run r = run(bin("pathtracer") + " -q -r 8 6 --packets maybe " + scene("cbox.json"));
+    CHECK(r.code == 2);
+    CHECK(r.output.find("--packets: expected one of on, off, got 'maybe'") != std::string::npos);
+    CHECK(count_lines(r.output) == 1);
+}

@@ -55,6 +55,7 @@ TEST_CASE("bad flags exit 2 with one line naming the flag") {
         {"-a 32 " + kScene, "-a (max tolerance): expected a number > 0"},
         {"--accel kd " + kScene, "--accel: expected one of none, grid, kdtree, bvh, embree, got 'kd'"},
         {"--transmittance dual " + kScene, "--transmittance: expected one of ratio, delta, got 'dual'"},
+        {"--packets yes " + kScene, "--packets: expected one of on, off, got 'yes'"},
         {"--student camra " + kScene, "--student: unknown stage 'camra'"},
         {"--frobnicate " + kScene, "--frobnicate: unknown option"},
         {"-s", "-s: expected 1 value after it"},
@@ -107,6 +108,7 @@ TEST_CASE("--help exits 0 and lists the contract flags") {
     CHECK(r.exit_code == 0);
     for (const char* flag : {"-s N", "-a N TOL", "-l N", "-t N", "-m N", "-o 0|1", "-e FILE", "-f FILE.png", "-r W H",
                              "-p X Y DX DY", "-H", "-b R", "--seed", "--hdr", "--accel", "--integrator", "--student",
-                             "--stats", "-q", "--direct", "--triangle", "--bvh-split", "--max-leaf", "--bvh-view"})
+                             "--stats", "-q", "--direct", "--triangle", "--bvh-split", "--max-leaf", "--bvh-view",
+                             "--packets"})
         CHECK(r.out.find(flag) != std::string::npos);
 }

@@ -64,6 +64,28 @@ TEST_CASE("kd-tree queries equal brute force on random points") {
     }
 }
 
+// A large k keeps the query filling (choosing the nearest pending cell)
+// for many cells: its fixed stack must not overflow, and the answer is
+// still brute force's.
+TEST_CASE("kd-tree k-nearest with k in the thousands equals brute force") {
+    Rng rng(13);
+    std::vector<Vec3> points(20000);
+    for (Vec3& p : points) p = {rng.next_1d(), rng.next_1d(), 0.01 * rng.next_1d()};
+    KdTree tree = reference::build_kdtree(points);
+    std::vector<Neighbor> found;
+    for (int q = 0; q < 12; ++q) {
+        const Vec3 p(rng.next_1d(), rng.next_1d(), 0.005);
+        const int k = q % 3 == 0 ? 20000 : 1000 + 700 * q;
+        std::vector<double> brute = brute_distances(points, p, 1e300);
+        reference::k_nearest(tree, p, k, 1e300, found);
+        REQUIRE(found.size() == size_t(k));
+        bool equal = true;
+        for (size_t i = 0; i < found.size(); ++i)
+            equal = equal && found[i].dist2 == brute[i] && found[i].dist2 == (points[found[i].id] - p).norm2();
+        CHECK(equal);
+    }
+}
+
 TEST_CASE("kd-tree queries on degenerate sets: duplicates, a plane, a line, one point, none") {
     Rng rng(11);
     std::vector<Vec3> duplicates(500, Vec3(0.5, 0.5, 0.5));
