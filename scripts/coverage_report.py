@@ -12,7 +12,8 @@ Reads the gcov counters of every student object under BUILD_DIR (gcov's JSON
 format), maps functions to tasks through the manifests (a function check's
 "check" is the function it grades; an image task's "student_functions";
 Part 2's performance task all four functions; part3.7's check both
-heuristics; part7.4's whole "bdpt" stage its three functions), and drops the lines the
+heuristics; part7.4's whole "bdpt" stage its three functions, part8.5's
+"photon" stage its four), and drops the lines the
 manifests' "coverage_exclusions" list ({"function", "line", "reason"}: the
 line's text, stripped). Branches gcov marks as exception paths ("throw")
 are not counted: they are the compiler's unwinding edges, not the student's;
@@ -40,6 +41,7 @@ CHECK_FUNCTIONS = {
 # function of that stage runs with the student's code.
 STAGE_FUNCTIONS = {
     "bdpt": ["random_walk", "connect", "mis_weight"],
+    "photon": ["emit_photon", "build_kdtree", "k_nearest", "density_estimate"],
 }
 
 

@@ -48,7 +48,8 @@ all_groups=(
   "mis38|3|part3.8|a mirror, rough gold|0"
   "pane38|3|part3.8|frosted-glass pane|0"
   "gold41|4|part4.1|rough gold and frosted glass|0"
-  "fog95|9|part9.5||0"
+  "fog95|9|part9.5|box of fog|0"
+  "panel95|9|part9.5|panel light|0"
   "lights74|7|part7.4|every kind|0"
   "walk71|7|part7.1||1"
 )

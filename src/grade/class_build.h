@@ -25,9 +25,10 @@ struct ClassBuildTools {
     int jobs = 1;               ///< compiler processes per build
     double timeout = 600;       ///< seconds per configure and per build
     /// The compile of the student's sources runs inside bubblewrap where it
-    /// can (sandbox.h build_sandbox_prefix), reading only these folders
-    /// (the project's sources, the main build), the submission and the
-    /// system, writing only its build folder; false: limits only.
+    /// can (sandbox.h build_sandbox_prefix), reading only these folders (the
+    /// project's CMake files, the main build), the project's headers, the
+    /// submission and the system, writing only its build folder; false:
+    /// limits only.
     bool sandbox = true;
     std::vector<std::string> readable = {};
     /// The project's src/ (include paths point there) and its headers-only

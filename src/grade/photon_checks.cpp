@@ -7,7 +7,8 @@
 //                     flux of N photons, each light chosen by power, sums to
 //                     the lights' total power (a z-test, |z| <= 5, with a
 //                     relative allowance of 1e-6 where the flux has no
-//                     variance).
+//                     variance). u_dir on the square's edges gives area
+//                     lights a grazing direction with pdf_dir 0: no photon.
 //   build_kdtree      the layout of stages/kdtree.h (kdtree_is_valid: the
 //                     split invariant at every node, ids a permutation),
 //                     each point kept with its id, and the reference's
@@ -188,17 +189,27 @@ TaskResult check_emit_photon(const TaskSpec& spec, const GradeEnvironment& env) 
     const std::vector<std::string> scenes =
         param(spec, "scenes", std::vector<std::string>{"scenes/cbox.json", "scenes/light_bulb.json"});
     Rng rng = check_rng(env.seed, "emit_photon");
+    Rng edge_rng = check_rng(env.seed, "emit_photon: edges");
     CaseLog log;
     std::string sums;
     for (const std::string& name : scenes) {
         Scene scene = load_scene(env.assets_dir + "/" + name);
         LightSet lights(scene);
-        log.category("the ray of light.sample_Le and the flux of equation 2, photon by photon");
         for (const std::unique_ptr<Light>& light : lights.all()) {
-            for (int i = 0; i < 500; ++i) {
-                const Vec2 u_pos = rng.next_2d(), u_dir = rng.next_2d();
-                const double probability = uniform(rng, 0.05, 1);
-                const uint64_t count = 1 + rng.next_index(100000);
+            // 500 random photons, then u_dir on the edges of the square
+            // (their own stream): (0, 0.5) and (0.5, 0) map to the rim of
+            // the concentric disk, a direction in the plane of an area light
+            // (cos 0, pdf_dir 0), for which sample_Le draws no ray.
+            const Vec2 edges[] = {{0, 0.5}, {0.5, 0}, {0, 0.25}, {0.75, 0}};
+            for (int i = 0; i < 500 + 4 * 8; ++i) {
+                const bool edge = i >= 500;
+                log.category(edge ? "u_dir on the edges of the square (grazing: an area light draws no ray)"
+                                  : "the ray of light.sample_Le and the flux of equation 2, photon by photon");
+                const Vec2 u_pos = edge ? edge_rng.next_2d() : rng.next_2d();
+                const Vec2 u_dir = edge ? edges[(i - 500) % 4] : rng.next_2d();
+                Rng& r = edge ? edge_rng : rng;
+                const double probability = uniform(r, 0.05, 1);
+                const uint64_t count = 1 + r.next_index(100000);
                 const EmittedPhoton got = env.student.photon.emit_photon(*light, probability, count, u_pos, u_dir);
                 const LightEmission e = light->sample_Le(u_pos, u_dir);
                 const std::string where = name + ", u_pos (" + format_num(u_pos.x) + ", " + format_num(u_pos.y) +

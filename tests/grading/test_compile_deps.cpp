@@ -5,7 +5,9 @@
 #include <doctest/doctest.h>
 
 #include <filesystem>
+#include <cstdlib>
 #include <fstream>
+#include <sstream>
 
 #include "grade/compile_deps.h"
 #include "grade/header_view.h"
@@ -72,4 +74,41 @@ TEST_CASE("a source of src/ read by a compile is found, through a link or a rela
           fs::canonical(src + "/stages/camera.cpp").string());
     CHECK(project_source_read({kRoot + "/sub/ref.h"}, src, build) ==
           fs::canonical(src + "/stages/camera.cpp").string());
+}
+
+TEST_CASE("under Ninja the lists come from ninja -t deps (the .d files are gone)") {
+    // What class_build.cpp runs for a Ninja build folder: `cmake --build
+    // DIR -- -t deps`. A toy project whose source includes a .cpp of a
+    // stand-in src/ folder through the include path.
+    if (std::system("command -v ninja > /dev/null 2>&1") != 0) {
+        MESSAGE("ninja is not installed: skipped");
+        return;
+    }
+    const std::string dir = kRoot + "/ninja";
+    fs::remove_all(dir);
+    fs::create_directories(dir + "/src/stages");
+    fs::create_directories(dir + "/sub");
+    std::ofstream(dir + "/src/stages/ref.cpp") << "inline int reference_answer() { return 42; }\n";
+    std::ofstream(dir + "/src/stages/api.h") << "#pragma once\n";
+    std::ofstream(dir + "/sub/a.cpp") << "#include \"stages/api.h\"\n#include \"stages/ref.cpp\"\n"
+                                         "int f() { return reference_answer(); }\n";
+    std::ofstream(dir + "/CMakeLists.txt")
+        << "cmake_minimum_required(VERSION 3.20)\nproject(toy CXX)\n"
+           "add_library(student OBJECT sub/a.cpp)\ntarget_include_directories(student PRIVATE src)\n";
+    const std::string b = dir + "/build";
+    REQUIRE(std::system(("cmake -G Ninja -S " + dir + " -B " + b + " > " + dir + "/log.txt 2>&1").c_str()) == 0);
+    REQUIRE(std::system(("cmake --build " + b + " >> " + dir + "/log.txt 2>&1").c_str()) == 0);
+    bool any_d = false;
+    for (const fs::directory_entry& e : fs::recursive_directory_iterator(b))
+        any_d = any_d || e.path().extension() == ".d";
+    CHECK_FALSE(any_d);  // why the Makefile way would find nothing
+    REQUIRE(std::system(("cmake --build " + b + " -- -t deps > " + dir + "/deps.txt 2>&1").c_str()) == 0);
+    std::ifstream in(dir + "/deps.txt");
+    std::stringstream text;
+    text << in.rdbuf();
+    const std::vector<CompileDeps> deps = parse_ninja_deps(text.str());
+    REQUIRE(deps.size() == 1);
+    CHECK(fs::weakly_canonical(fs::path(b) / deps[0].source) == fs::weakly_canonical(dir + "/sub/a.cpp"));
+    CHECK(project_source_read(deps[0].files, dir + "/src", b) ==
+          fs::canonical(dir + "/src/stages/ref.cpp").string());
 }
