@@ -4,9 +4,10 @@
 # graded as the student on many seeds, each case's failures counted
 # (docs/grading.md, "Measured false-failure rate and power").
 #
-#   scripts/false_failure.sh [-n SEEDS] [-j JOBS] [-c CHUNK] [-g GROUPS] [BUILD_DIR]
+#   scripts/false_failure.sh [-n SEEDS] [-s FIRST] [-j JOBS] [-c CHUNK] [-g GROUPS] [BUILD_DIR]
 #
-# SEEDS per case (default 1000), split into chunks of CHUNK seeds (default
+# SEEDS per case (default 1000) from seed FIRST (default 1: -s 551 -n 450
+# extends a run of seeds 1 to 550 to 1000 in a fresh build folder), split into chunks of CHUNK seeds (default
 # 25) run by JOBS processes at once (default 2; each renders with 2
 # threads). It needs BUILD_DIR/tests/test_grading (default build). Every
 # chunk's log is kept in BUILD_DIR/false_failure/, so a run that is stopped
@@ -20,15 +21,20 @@
 # measure another rule (fewer tiles, fewer tests).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-seeds=1000 jobs=2 chunk=25 groups=""
-while getopts "n:j:c:g:" opt; do
+seeds=1000 start=1 jobs=2 chunk=25 groups=""
+usage="usage: scripts/false_failure.sh [-n SEEDS] [-s FIRST] [-j JOBS] [-c CHUNK] [-g GROUPS] [BUILD_DIR]"
+while getopts "n:s:j:c:g:" opt; do
   case $opt in
     n) seeds=$OPTARG ;;
+    s) start=$OPTARG ;;
     j) jobs=$OPTARG ;;
     c) chunk=$OPTARG ;;
     g) groups=$OPTARG ;;
-    *) echo "usage: scripts/false_failure.sh [-n SEEDS] [-j JOBS] [-c CHUNK] [-g GROUPS] [BUILD_DIR]" >&2; exit 2 ;;
+    *) echo "$usage" >&2; exit 2 ;;
   esac
+done
+for v in "-n:$seeds" "-s:$start" "-j:$jobs" "-c:$chunk"; do
+  [[ ${v#*:} =~ ^[1-9][0-9]*$ ]] || { echo "false_failure: ${v%%:*} needs a positive integer, got '${v#*:}'" >&2; exit 2; }
 done
 shift $((OPTIND - 1))
 build=${1:-$root/build}
@@ -54,12 +60,13 @@ all_groups=(
   "walk71|7|part7.1||1"
 )
 
-# Round-robin over the groups (seeds 1.. of every group, then the next
+# Round-robin over the groups (the first chunk of every group, then the next
 # chunk of every group), so that a run stopped early has measured every
 # case on about as many seeds.
 chunks=()
-for ((first = 1; first <= seeds; first += chunk)); do
-  n=$((seeds - first + 1 < chunk ? seeds - first + 1 : chunk))
+last=$((start + seeds - 1))
+for ((first = start; first <= last; first += chunk)); do
+  n=$((last - first + 1 < chunk ? last - first + 1 : chunk))
   for g in "${all_groups[@]}"; do
     IFS='|' read -r name part task cases functions <<< "$g"
     if [ -n "$groups" ] && [[ ",$groups," != *",$name,"* ]]; then continue; fi
@@ -83,7 +90,7 @@ export out tests
 
 # The first chunk of each group one at a time: it renders the converged
 # references into the test cache that the others then share.
-first_round=$(printf '%s\n' "${chunks[@]}" | awk -F'|' '$6 == 1' | wc -l)
+first_round=$(printf '%s\n' "${chunks[@]}" | awk -F'|' -v s="$start" '$6 == s' | wc -l)
 for c in "${chunks[@]:0:$first_round}"; do run_chunk "$c"; done
 printf '%s\n' "${chunks[@]:$first_round}" | xargs -r -P "$jobs" -I{} bash -c 'run_chunk "$@"' _ {}
 
