@@ -287,3 +287,57 @@ TEST_CASE("grade --class: a hostile compile fails that student's build with its 
     if (!pt::build_sandbox_prefix({}, {}, true).empty())
         CHECK(rows[2].find("/etc/hostname: No such file or directory") != std::string::npos);
 }
+
+namespace {
+
+/// Gives `path` a modification time of 2000-01-01, older than any object
+/// a build folder can hold (as unzip, tar or cp -p keep a file's time).
+void make_old(const std::string& path) {
+    REQUIRE(std::system(("touch -d 2000-01-01 '" + path + "'").c_str()) == 0);
+}
+
+/// part1/intersect.cpp of the solution, or with `bug` (from -> to) in it, made old.
+void write_intersect(const std::string& dir, const std::pair<std::string, std::string>* bug) {
+    fs::create_directories(dir + "/part1");
+    fs::copy_file(std::string(PT_SOURCE_DIR) + "/tests/grading/solution/part1/intersect.cpp",
+                  dir + "/part1/intersect.cpp", fs::copy_options::overwrite_existing);
+    if (bug) replace_in_file(dir + "/part1/intersect.cpp", bug->first, bug->second);
+    make_old(dir + "/part1/intersect.cpp");
+}
+
+}  // namespace
+
+TEST_CASE("grade --class: files older than the build folder's objects are still compiled") {
+    // make and ninja rebuild an object only when its source is newer. One
+    // worker (-j 1) grades amy, then ben, whose file is dated 2000; then
+    // both resubmit into the same folders (dated 2000 again, as unzip keeps
+    // them) and the class is graded again with the same build folder. Each
+    // report must be that of the code submitted at the time.
+    const std::pair<std::string, std::string> barycentric = {"b1 + b2 > 1", "b1 > 1 || b2 > 1"};
+    const std::pair<std::string, std::string> t_min = {"if (t < ray.t_min || t > ray.t_max) return std::nullopt;",
+                                                       "if (t > ray.t_max) return std::nullopt;"};
+    const std::string dir = kRoot + "/old_files", out = kRoot + "/old_files_out";
+    fs::remove_all(dir);
+    fs::remove_all(out);
+    write_intersect(dir + "/amy", nullptr);
+    fs::last_write_time(dir + "/amy/part1/intersect.cpp", fs::file_time_type::clock::now());
+    write_intersect(dir + "/ben", &barycentric);
+    const std::string args = "--class " + dir + " --out " + out + " --task part1.3 -j 1 -q";
+    std::string output;
+    REQUIRE_MESSAGE(grade(args, &output) == 0, output);
+    std::vector<std::string> rows = lines(slurp(out + "/gradebook.csv"));
+    REQUIRE(rows.size() == 3);
+    CHECK(rows[1] == "amy,25,25,25,graded,");
+    CHECK(rows[2] == "ben,0,0,25,graded,");  // ben's own bug, not amy's objects
+
+    // The resubmissions: amy now forgets t_min, ben is right.
+    write_intersect(dir + "/amy", &t_min);
+    write_intersect(dir + "/ben", nullptr);
+    REQUIRE_MESSAGE(grade(args, &output) == 0, output);
+    rows = lines(slurp(out + "/gradebook.csv"));
+    REQUIRE(rows.size() == 3);
+    CHECK(rows[1] == "amy,0,0,25,graded,");
+    CHECK(rows[2] == "ben,25,25,25,graded,");
+    const nlohmann::json amy = nlohmann::json::parse(slurp(out + "/amy/report.json"));
+    CHECK(amy["tasks"][0]["status"] == "fail");
+}
