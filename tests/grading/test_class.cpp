@@ -341,3 +341,45 @@ TEST_CASE("grade --class: files older than the build folder's objects are still 
     const nlohmann::json amy = nlohmann::json::parse(slurp(out + "/amy/report.json"));
     CHECK(amy["tasks"][0]["status"] == "fail");
 }
+
+TEST_CASE("grade --class: a student's static initializers run only in the sandboxed runner") {
+    // ivan: the solution's camera with a static initializer that writes into
+    // the reports folder and registers an atexit handler that would too
+    // (issue 14: once both ran in grade itself); jack: one that raises
+    // SIGSEGV before main. ivan's verdict must be the honest one and no file
+    // of his may appear (the runner sees no reports folder and ends with
+    // _exit); jack fails his task with the signal, and the run still writes
+    // every report.
+    const std::string src = PT_SOURCE_DIR, dir = kRoot + "/static_init", out = kRoot + "/static_init_out";
+    fs::remove_all(dir);
+    fs::remove_all(out);
+    for (const char* name : {"ivan", "jack"}) {
+        fs::create_directories(dir + "/" + name);
+        fs::copy(src + "/tests/grading/solution/part1", dir + "/" + name + "/part1", fs::copy_options::recursive);
+    }
+    std::ofstream(dir + "/ivan/part1/camera.cpp", std::ios::app)
+        << "\n#include <cstdio>\n#include <cstdlib>\nnamespace {\nconst int forged = [] {\n"
+        << "    std::atexit([] { if (FILE* f = std::fopen(\"" << out << "/forged_atexit\", \"w\")) std::fclose(f); });\n"
+        << "    if (FILE* f = std::fopen(\"" << out << "/forged_static\", \"w\")) std::fclose(f);\n"
+        << "    return 0;\n}();\n}  // namespace\n";
+    std::ofstream(dir + "/jack/part1/camera.cpp", std::ios::app)
+        << "\n#include <csignal>\nnamespace {\nconst int crash = (std::raise(SIGSEGV), 0);\n}  // namespace\n";
+    std::string output;
+    REQUIRE_MESSAGE(grade("--class " + dir + " --out " + out + " --task part1.1 --build-dir " + kRoot + "/work -q",
+                          &output) == 0,
+                    output);
+    const std::vector<std::string> rows = lines(slurp(out + "/gradebook.csv"));
+    REQUIRE(rows.size() == 3);
+    CHECK(rows[1] == "ivan,25,25,25,graded,");
+    CHECK(rows[2] == "jack,0,0,25,graded,");
+    for (const char* name : {"ivan", "jack"})
+        for (const char* f : {"report.md", "report.json", "report.html", "results.json"})
+            CHECK_MESSAGE(fs::exists(out + "/" + name + "/" + f), name << "/" << f);
+    const nlohmann::json jack = nlohmann::json::parse(slurp(out + "/jack/report.json"));
+    INFO(jack["tasks"][0]["message"]);
+    CHECK(jack["tasks"][0]["status"] == "fail");
+    CHECK(jack["tasks"][0]["message"].get<std::string>().find("Segmentation fault") != std::string::npos);
+    CHECK_FALSE(fs::exists(out + "/forged_atexit"));  // never run: the runner ends with _exit
+    if (!pt::build_sandbox_prefix({}, {}, true).empty())
+        CHECK_FALSE(fs::exists(out + "/forged_static"));  // the sandbox has no reports folder
+}
