@@ -51,6 +51,7 @@
 #include "grade/case_log.h"
 #include "grade/chi_square.h"
 #include "grade/function_checks.h"
+#include "grade/mis_oracle.h"
 #include "grade/params.h"
 #include "grade/random_inputs.h"
 #include "render/integrators.h"
@@ -560,75 +561,8 @@ TaskResult check_bdpt_connect(const TaskSpec& spec, const GradeEnvironment& env)
     return r;
 }
 
-namespace {
-
-/// A path x0 (light) .. x(n-1) (camera): pf[i] the density of x_i sampled
-/// from the light's side, pr[i] from the camera's; delta[i] a delta vertex
-/// (x0: a delta light, which no camera subpath hits).
-struct RandomPath {
-    std::vector<double> pf, pr;
-    std::vector<bool> delta;
-    int n = 0;
-};
-
-RandomPath random_path(Rng& rng, int n, double decades, double delta_chance) {
-    RandomPath p;
-    p.n = n;
-    for (int i = 0; i < n; ++i) {
-        const bool d = i < n - 1 && rng.next_1d() < delta_chance;  // the camera is never a delta
-        const double c = 0.3 + rng.next_1d();  // a delta lobe's chance, the same both ways
-        p.pf.push_back(d ? c : std::pow(10.0, decades * (rng.next_1d() - 0.5)));
-        p.pr.push_back(d ? c : std::pow(10.0, decades * (rng.next_1d() - 0.5)));
-        p.delta.push_back(d);
-    }
-    return p;
-}
-
-/// Whether strategy (s, n - s) can make the path: no t = 0, no (1, 1), no
-/// edge at a delta vertex, no s = 0 onto a delta light.
-bool can_make(const RandomPath& p, int s) {
-    const int t = p.n - s;
-    if (t < 1 || (s == 1 && t == 1)) return false;
-    if (s == 0) return !p.delta[0];
-    return (s == 1 || !p.delta[size_t(s) - 1]) && !p.delta[size_t(s)];
-}
-
-/// p_s: the product of the densities of the path's vertices as strategy s makes them.
-long double density(const RandomPath& p, int s) {
-    long double d = 1;
-    for (int i = 0; i < p.n; ++i)
-        d *= i < s ? p.pf[size_t(i)] : p.pr[size_t(i)];
-    return d;
-}
-
-double brute_force_weight(const RandomPath& p, int s, int b) {
-    long double sum = 0;
-    for (int i = 0; i <= p.n; ++i)
-        if (can_make(p, i)) sum += b == 2 ? density(p, i) * density(p, i) : density(p, i);
-    const long double ps = b == 2 ? density(p, s) * density(p, s) : density(p, s);
-    return double(ps / sum);
-}
-
-/// The arrays mis_weight takes for strategy s (stages/bdpt.h): delta
-/// vertices carry densities 0.
-void mis_arrays(const RandomPath& p, int s, std::vector<MisVertex>& light, std::vector<MisVertex>& camera) {
-    const int t = p.n - s;
-    light.assign(size_t(s), {});
-    camera.assign(size_t(t), {});
-    for (int i = 0; i < s; ++i) {
-        const bool d = i > 0 && p.delta[size_t(i)];
-        light[size_t(i)] = {d ? 0.0 : p.pf[size_t(i)], d ? 0.0 : p.pr[size_t(i)], d};
-    }
-    for (int j = 0; j < t; ++j) {
-        const size_t i = size_t(p.n - 1 - j);
-        const bool d = i > 0 && p.delta[i];
-        camera[size_t(j)] = {d ? 0.0 : p.pr[i], d ? 0.0 : p.pf[i], d};
-    }
-}
-
-}  // namespace
-
 TaskResult check_bdpt_mis_weight(const TaskSpec& spec, const GradeEnvironment& env) {
+    using namespace mis_oracle;
     const double rel_tol = param(spec, "rel_tol", 1e-9);
     const int cases = param(spec, "cases", 1000);
     Rng rng = check_rng(env.seed, "mis_weight");
@@ -647,7 +581,6 @@ TaskResult check_bdpt_mis_weight(const TaskSpec& spec, const GradeEnvironment& e
     for (const Family& f : families) {
         for (MisHeuristic h : {MisHeuristic::power, MisHeuristic::balance}) {
             log.category(std::string(f.name) + ", the " + to_string(h) + " heuristic");
-            const int b = h == MisHeuristic::power ? 2 : 1;
             for (int k = 0; k < cases / 4; ++k) {
                 const int n = 2 + int(rng.next_index(7));
                 RandomPath p = random_path(rng, n, f.decades, f.delta_chance);
@@ -661,7 +594,7 @@ TaskResult check_bdpt_mis_weight(const TaskSpec& spec, const GradeEnvironment& e
                     std::vector<MisVertex> lv, cv;
                     mis_arrays(p, s, lv, cv);
                     const double got = env.student.bdpt.mis_weight(lv.data(), s, cv.data(), n - s, p.delta[0], h);
-                    const double want = brute_force_weight(p, s, b);
+                    const double want = brute_force_weight(p, s, h);
                     sum += got;
                     if (!close(got, want, rel_tol) && ok) {
                         ok = false;

@@ -158,11 +158,15 @@ ClassBuildResult build_submission(const ClassBuildTools& tools, const std::strin
         return r;
     }
     const std::vector<std::string> sources = submission_sources(s, tools.handout_dir);
+    std::vector<std::string> own;  // the submission's files, not the handout's stubs
+    for (const std::string& f : sources)
+        if (fs::path(f).lexically_relative(s.dir).string().rfind("..", 0) != 0) own.push_back(f);
     std::vector<std::string> configure = {tools.cmake,
                                           "-S", tools.project_dir,
                                           "-B", work_dir,
                                           "-C", tools.initial_cache,
                                           "-DPT_STUDENT_SOURCES=" + join(sources, ';'),
+                                          "-DPT_SUBMITTED_SOURCES=" + join(own, ';'),
                                           "-DPT_KEYS=" + join(keys, ';')};
     if (!fs::exists(fs::path(work_dir) / "CMakeCache.txt", ec))
         configure.insert(configure.begin() + 1, {"-G", tools.generator});

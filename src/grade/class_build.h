@@ -4,8 +4,9 @@
 // (BUILD/grade_class/initial_cache.cmake): the compiler, its flags and the
 // trusted objects of the runners. Per submission the folder is configured
 // again with that submission's sources and built: only the student's files
-// are compiled (a handout stub's object stays up to date from one student
-// to the next), and only the runners of the submitted parts are linked.
+// are compiled, every time whatever their file times (a handout stub's
+// object stays up to date from one student to the next), and only the
+// runners of the submitted parts are linked.
 #pragma once
 
 #include <string>

@@ -91,6 +91,7 @@ TaskResult check_image(const TaskSpec& spec, const GradeEnvironment& env) {
     result.comparison = "<=";
     result.status = TaskStatus::pass;
     double worst = -1;
+    std::string suspicious;  // the first flagged case: always in the task's message
     const nlohmann::json& cases = spec.params["cases"];
     for (size_t i = 0; i < cases.size(); ++i) {
         ImageCase c =
@@ -186,6 +187,7 @@ TaskResult check_image(const TaskSpec& spec, const GradeEnvironment& env) {
                                " spp?";
             out.message = flag + "; " + out.message;
             result.details.push_back("case " + std::to_string(i + 1) + " " + flag);
+            if (suspicious.empty()) suspicious = "case " + std::to_string(i + 1) + " " + flag;
         }
         result.images.push_back(out);
         result.details.push_back("case " + std::to_string(i + 1) + " " + out.label + ": " +
@@ -207,6 +209,10 @@ TaskResult check_image(const TaskSpec& spec, const GradeEnvironment& env) {
     if (result.status == TaskStatus::pass)
         result.message = "all " + std::to_string(cases.size()) +
                          " cases pass; closest to its limit: " + result.message;
+    // A copied case has the least error of all, so it is never the one the
+    // message reports: the flag goes first, where the gradebook's reader sees it.
+    if (!suspicious.empty() && result.message.find(suspicious) == std::string::npos)
+        result.message = suspicious + "; " + result.message;
     return result;
 }
 

@@ -208,4 +208,9 @@ ReferenceRenders reference_renders(const Scene& scene, const ImageCase& c, int r
     return r;
 }
 
+void forget_converged_in_memory() {
+    std::lock_guard<std::mutex> lock(memo_mutex);
+    converged_memo().clear();
+}
+
 }  // namespace pt

@@ -47,4 +47,8 @@ constexpr uint64_t kReferenceRunSeed = 0x5EED10000000ull;
 ReferenceRenders reference_renders(const Scene& scene, const ImageCase& c, int runs,
                                    const GradeEnvironment& env);
 
+/// Forgets the converged images this process keeps in memory, so that the
+/// next reference_renders reads the disk cache again (the cache's tests).
+void forget_converged_in_memory();
+
 }  // namespace pt

@@ -287,3 +287,99 @@ TEST_CASE("grade --class: a hostile compile fails that student's build with its 
     if (!pt::build_sandbox_prefix({}, {}, true).empty())
         CHECK(rows[2].find("/etc/hostname: No such file or directory") != std::string::npos);
 }
+
+namespace {
+
+/// Gives `path` a modification time of 2000-01-01, older than any object
+/// a build folder can hold (as unzip, tar or cp -p keep a file's time).
+void make_old(const std::string& path) {
+    REQUIRE(std::system(("touch -d 2000-01-01 '" + path + "'").c_str()) == 0);
+}
+
+/// part1/intersect.cpp of the solution, or with `bug` (from -> to) in it, made old.
+void write_intersect(const std::string& dir, const std::pair<std::string, std::string>* bug) {
+    fs::create_directories(dir + "/part1");
+    fs::copy_file(std::string(PT_SOURCE_DIR) + "/tests/grading/solution/part1/intersect.cpp",
+                  dir + "/part1/intersect.cpp", fs::copy_options::overwrite_existing);
+    if (bug) replace_in_file(dir + "/part1/intersect.cpp", bug->first, bug->second);
+    make_old(dir + "/part1/intersect.cpp");
+}
+
+}  // namespace
+
+TEST_CASE("grade --class: files older than the build folder's objects are still compiled") {
+    // make and ninja rebuild an object only when its source is newer. One
+    // worker (-j 1) grades amy, then ben, whose file is dated 2000; then
+    // both resubmit into the same folders (dated 2000 again, as unzip keeps
+    // them) and the class is graded again with the same build folder. Each
+    // report must be that of the code submitted at the time.
+    const std::pair<std::string, std::string> barycentric = {"b1 + b2 > 1", "b1 > 1 || b2 > 1"};
+    const std::pair<std::string, std::string> t_min = {"if (t < ray.t_min || t > ray.t_max) return std::nullopt;",
+                                                       "if (t > ray.t_max) return std::nullopt;"};
+    const std::string dir = kRoot + "/old_files", out = kRoot + "/old_files_out";
+    fs::remove_all(dir);
+    fs::remove_all(out);
+    write_intersect(dir + "/amy", nullptr);
+    fs::last_write_time(dir + "/amy/part1/intersect.cpp", fs::file_time_type::clock::now());
+    write_intersect(dir + "/ben", &barycentric);
+    const std::string args = "--class " + dir + " --out " + out + " --task part1.3 -j 1 -q";
+    std::string output;
+    REQUIRE_MESSAGE(grade(args, &output) == 0, output);
+    std::vector<std::string> rows = lines(slurp(out + "/gradebook.csv"));
+    REQUIRE(rows.size() == 3);
+    CHECK(rows[1] == "amy,25,25,25,graded,");
+    CHECK(rows[2] == "ben,0,0,25,graded,");  // ben's own bug, not amy's objects
+
+    // The resubmissions: amy now forgets t_min, ben is right.
+    write_intersect(dir + "/amy", &t_min);
+    write_intersect(dir + "/ben", nullptr);
+    REQUIRE_MESSAGE(grade(args, &output) == 0, output);
+    rows = lines(slurp(out + "/gradebook.csv"));
+    REQUIRE(rows.size() == 3);
+    CHECK(rows[1] == "amy,0,0,25,graded,");
+    CHECK(rows[2] == "ben,25,25,25,graded,");
+    const nlohmann::json amy = nlohmann::json::parse(slurp(out + "/amy/report.json"));
+    CHECK(amy["tasks"][0]["status"] == "fail");
+}
+
+TEST_CASE("grade --class: a student's static initializers run only in the sandboxed runner") {
+    // ivan: the solution's camera with a static initializer that writes into
+    // the reports folder and registers an atexit handler that would too
+    // (issue 14: once both ran in grade itself); jack: one that raises
+    // SIGSEGV before main. ivan's verdict must be the honest one and no file
+    // of his may appear (the runner sees no reports folder and ends with
+    // _exit); jack fails his task with the signal, and the run still writes
+    // every report.
+    const std::string src = PT_SOURCE_DIR, dir = kRoot + "/static_init", out = kRoot + "/static_init_out";
+    fs::remove_all(dir);
+    fs::remove_all(out);
+    for (const char* name : {"ivan", "jack"}) {
+        fs::create_directories(dir + "/" + name);
+        fs::copy(src + "/tests/grading/solution/part1", dir + "/" + name + "/part1", fs::copy_options::recursive);
+    }
+    std::ofstream(dir + "/ivan/part1/camera.cpp", std::ios::app)
+        << "\n#include <cstdio>\n#include <cstdlib>\nnamespace {\nconst int forged = [] {\n"
+        << "    std::atexit([] { if (FILE* f = std::fopen(\"" << out << "/forged_atexit\", \"w\")) std::fclose(f); });\n"
+        << "    if (FILE* f = std::fopen(\"" << out << "/forged_static\", \"w\")) std::fclose(f);\n"
+        << "    return 0;\n}();\n}  // namespace\n";
+    std::ofstream(dir + "/jack/part1/camera.cpp", std::ios::app)
+        << "\n#include <csignal>\nnamespace {\nconst int crash = (std::raise(SIGSEGV), 0);\n}  // namespace\n";
+    std::string output;
+    REQUIRE_MESSAGE(grade("--class " + dir + " --out " + out + " --task part1.1 --build-dir " + kRoot + "/work -q",
+                          &output) == 0,
+                    output);
+    const std::vector<std::string> rows = lines(slurp(out + "/gradebook.csv"));
+    REQUIRE(rows.size() == 3);
+    CHECK(rows[1] == "ivan,25,25,25,graded,");
+    CHECK(rows[2] == "jack,0,0,25,graded,");
+    for (const char* name : {"ivan", "jack"})
+        for (const char* f : {"report.md", "report.json", "report.html", "results.json"})
+            CHECK_MESSAGE(fs::exists(out + "/" + name + "/" + f), name << "/" << f);
+    const nlohmann::json jack = nlohmann::json::parse(slurp(out + "/jack/report.json"));
+    INFO(jack["tasks"][0]["message"]);
+    CHECK(jack["tasks"][0]["status"] == "fail");
+    CHECK(jack["tasks"][0]["message"].get<std::string>().find("Segmentation fault") != std::string::npos);
+    CHECK_FALSE(fs::exists(out + "/forged_atexit"));  // never run: the runner ends with _exit
+    if (!pt::build_sandbox_prefix({}, {}, true).empty())
+        CHECK_FALSE(fs::exists(out + "/forged_static"));  // the sandbox has no reports folder
+}
