@@ -1,6 +1,7 @@
 // Reference kd-tree (stages/kdtree.h): build by median selection; the
-// k-nearest query descends iteratively, nearer side first (its design and
-// what each choice bought: docs/photon_mapping.md, `bench kdtree`).
+// k-nearest query (stages/kdtree_search.h) reads the inner nodes from the
+// students' layout here (its design and what each choice bought:
+// docs/photon_mapping.md, `bench kdtree`).
 #include "stages/kdtree.h"
 
 #include <algorithm>
