@@ -27,6 +27,9 @@
 //                  current k-th distance; the first k come from the
 //                  nearest cells, best-first, so that bound starts tight)
 //   within_radius  every point within a fixed distance (SPPM's query)
+// The search itself is stages/kdtree_search.h; the renderer runs it
+// through a query-side copy of the inner nodes (stages/knn_index.h), with
+// the same answers.
 // Distances are squared Euclidean; a point at exactly the maximum distance
 // is found. Ties at equal distance may be broken either way.
 //

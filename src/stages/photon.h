@@ -53,6 +53,7 @@
 #include "core/ray.h"
 #include "core/vec3.h"
 #include "stages/kdtree.h"
+#include "stages/knn_index.h"
 #include "stages/settings.h"
 
 namespace pt {
@@ -74,11 +75,14 @@ struct Photon {
 struct PhotonMap {
     std::vector<Photon> photons;  ///< in the order they were traced
     KdTree tree;                  ///< tree.ids index `photons`
+    /// The reference query's copy of the tree's inner nodes (stages/knn_index.h),
+    /// built only when the reference k_nearest answers the map's queries.
+    KnnIndex index;
     uint64_t emitted = 0;         ///< photons emitted to fill it (N of equation 2)
 
     bool empty() const { return photons.empty(); }
-    /// Bytes held by the photons and the tree.
-    size_t bytes() const { return photons.capacity() * sizeof(Photon) + tree.bytes(); }
+    /// Bytes held by the photons, the tree and the index.
+    size_t bytes() const { return photons.capacity() * sizeof(Photon) + tree.bytes() + index.bytes(); }
 };
 
 /// A photon leaving a light: the ray it travels along and its flux.
@@ -152,7 +156,8 @@ struct PhotonTracing {
 std::vector<Photon> trace_photons(const RenderContext& context, const PhotonTracing& tracing, int threads);
 
 /// The map of `photons` (from `emitted` emitted), its tree built by
-/// context.stages.photon.build_kdtree.
+/// context.stages.photon.build_kdtree (and the index when
+/// context.stages.photon.k_nearest is the reference's).
 PhotonMap make_photon_map(const RenderContext& context, std::vector<Photon> photons, uint64_t emitted);
 
 /// How a radiance estimate finds its photons.

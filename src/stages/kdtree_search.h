@@ -1,0 +1,191 @@
+// The reference k-nearest search (stages/kdtree.h), written once for two
+// ways of reading a tree's inner nodes: from the students' layout itself
+// (stages/kdtree.cpp) and from the query-side copy of stages/knn_index.h.
+// Private to those two files. Both read the same doubles and do the same
+// arithmetic in the same order, so they return the same answers bit for
+// bit, ties included (tests/unit/test_knn_index.cpp checks it).
+#pragma once
+
+#include <cstdint>
+#include <algorithm>
+#include <utility>
+#include <vector>
+
+#include "stages/kdtree.h"
+
+namespace pt::kdtree_detail {
+
+/// Subtrees of at most this many points are scanned, not descended (a
+/// bucket): 16 to 32 measured alike (docs/photon_mapping.md).
+constexpr uint32_t kScanBelow = 16;
+
+/// A subtree still to visit, with what the pruning test needs: the
+/// squared distance from p to the subtree's cell, the offsets that sum to
+/// it (Arya and Mount's incremental distance, 1993: crossing a plane
+/// replaces one axis's term, so a far cell is skipped when its whole box,
+/// not only its nearest plane, lies beyond the k-th distance) and the node
+/// point on the plane between the cell and its sibling.
+struct PendingCell {
+    uint32_t lo, hi;     ///< the subtree's range [lo, hi)
+    uint32_t node;       ///< the parent's node point (its position in tree order), on this cell's boundary
+    uint32_t heap;       ///< the cell's breadth-first number (root 1, children 2h and 2h + 1)
+    double dist2;        ///< squared distance from p to the cell
+    double offset[3];    ///< p's distance to the cell along each axis (0 inside)
+};
+
+/// One k-nearest query (reference): the (at most) k points within `bound`
+/// nearest to p, nearest first: their squared distances written to
+/// dist2[0, count) and their positions in tree order (not yet ids: ids are
+/// looked up once, for the answers) to at[0, count); returns count.
+/// dist2[-1] must be readable: it is set to -1, a sentinel below every
+/// distance, so that the insertion loop needs no test for the front.
+///
+/// `Nodes` reads the inner node of range [lo, hi) (more than kScanBelow
+/// points, middle `mid`, breadth-first number `heap`):
+///   nodes.axis(mid, heap), nodes.point(mid, heap)   its split axis and point
+///   nodes.prefetch(lo, mid, hi, heap)               hint: its children come next
+/// Buckets are always read from tree.points.
+///
+/// Why it is shaped this way, measured by `bench kdtree` and perf
+/// (docs/photon_mapping.md): with k = 50 a query looks at about 300
+/// points, and the time went to branch mispredictions in the candidate
+/// bookkeeping and to cache misses on the descent, not to the distances.
+/// Hence: the best k kept as a sorted array (insertion from the back, so
+/// the answer needs no final sort; a heap plus a sort cost more at this
+/// k), distances and positions in two arrays (a shift moves one double
+/// and one index, not a padded pair), the first k taken best-first (see
+/// below), a bucket's distances computed first and filtered without branches,
+/// an explicit stack instead of recursion, and the children prefetched
+/// while the parent is examined. The state lives in locals, not in
+/// members, so that the compiler keeps the bound in a register.
+template <class Nodes>
+inline size_t knn_search(const KdTree& tree, const Nodes& nodes, const Vec3& p, size_t k, double bound,
+                         double* best_dist2, uint32_t* best_at) {
+    const Vec3* points = tree.points.data();
+    size_t count = 0;  // how many of the best are filled
+    best_dist2[-1] = -1;
+
+    // Keeps a point within the bound: inserted into the sorted best from
+    // the back (the farthest drops out once k are held); the bound then
+    // becomes the k-th distance.
+    auto consider = [&](double dist2, uint32_t at) {
+        if (!(dist2 <= bound)) return;  // written so that a NaN distance is never kept
+        size_t i = count < k ? count++ : k - 1;
+        for (; best_dist2[i - 1] > dist2; --i) {
+            best_dist2[i] = best_dist2[i - 1];
+            best_at[i] = best_at[i - 1];
+        }
+        best_dist2[i] = dist2;
+        best_at[i] = at;
+        if (count == k) bound = best_dist2[k - 1];
+    };
+    // Every point of the bucket [lo, hi), at most kScanBelow of them.
+    auto scan_bucket = [&](uint32_t lo, uint32_t hi) {
+        double dist2[kScanBelow];
+        uint32_t inside[kScanBelow];
+        const uint32_t n = hi - lo;
+        for (uint32_t j = 0; j < n; ++j) dist2[j] = (points[lo + j] - p).norm2();
+        // Most points of a bucket lie beyond the bound: keep the others by
+        // arithmetic, not by a branch that the processor mispredicts.
+        uint32_t m = 0;
+        for (uint32_t j = 0; j < n; ++j) {
+            inside[m] = j;
+            m += dist2[j] <= bound;
+        }
+        for (uint32_t s = 0; s < m; ++s) consider(dist2[inside[s]], lo + inside[s]);
+    };
+
+    // A descent pushes at most one cell per level, and a 32-bit size has
+    // at most 32 levels. Depth-first, the stack holds one path; a
+    // best-first choice leaves older cells below a new descent, so it is
+    // made only while a whole descent still fits.
+    constexpr int kMaxDescent = 32, kStackSize = 128;
+    PendingCell stack[kStackSize];
+    int top = 0;
+    // The cell being descended, in locals (registers): its range,
+    // breadth-first number, squared distance from p and per-axis offsets.
+    uint32_t lo = 0, hi = uint32_t(tree.size()), heap = 1;
+    double cell_dist2 = 0, offset[3] = {0, 0, 0};
+    for (;;) {
+        // Descend to the bucket that holds p, leaving the far child of
+        // every node on the stack.
+        while (hi - lo > kScanBelow) {
+            const uint32_t mid = lo + (hi - lo) / 2;
+            nodes.prefetch(lo, mid, hi, heap);
+            const int axis = nodes.axis(mid, heap);
+            const double delta = p[axis] - nodes.point(mid, heap)[axis];
+            PendingCell& far = stack[top++];
+            far.node = mid;
+            far.dist2 = cell_dist2 - offset[axis] * offset[axis] + delta * delta;
+            far.offset[0] = offset[0];
+            far.offset[1] = offset[1];
+            far.offset[2] = offset[2];
+            far.offset[axis] = delta;
+            if (delta <= 0) {
+                far.lo = mid + 1;
+                far.hi = hi;
+                far.heap = 2 * heap + 1;
+                hi = mid;
+                heap = 2 * heap;
+            } else {
+                far.lo = lo;
+                far.hi = mid;
+                far.heap = 2 * heap;
+                lo = mid + 1;
+                heap = 2 * heap + 1;
+            }
+        }
+        scan_bucket(lo, hi);
+        // Until k points are held the bound is infinite and every point
+        // found is kept, so the first k decide how tight the bound starts:
+        // take them from the nearest pending cell (best-first), not from
+        // the last one pushed. Afterwards the stack's order (depth-first,
+        // nearer side first) is as good and costs nothing.
+        if (count < k && top > 1 && top + kMaxDescent <= kStackSize) {
+            int nearest = top - 1;
+            for (int i = top - 2; i >= 0; --i)
+                if (stack[i].dist2 < stack[nearest].dist2) nearest = i;
+            std::swap(stack[nearest], stack[top - 1]);
+        }
+        // Back up to the nearest pending cell that can still hold a better
+        // point. Its node point lies on its boundary, so it is no nearer
+        // than the cell: both are skipped together.
+        const PendingCell* next = nullptr;
+        while (top > 0 && !next) {
+            const PendingCell& pending = stack[--top];
+            if (pending.dist2 <= bound) next = &pending;
+        }
+        if (!next) return count;
+        // The parent of cell h is h / 2 (breadth-first numbering).
+        consider((nodes.point(next->node, next->heap / 2) - p).norm2(), next->node);
+        lo = next->lo;
+        hi = next->hi;
+        heap = next->heap;
+        cell_dist2 = next->dist2;
+        offset[0] = next->offset[0];
+        offset[1] = next->offset[1];
+        offset[2] = next->offset[2];
+    }
+}
+
+/// reference::k_nearest's contract (stages/kdtree.h) over knn_search.
+template <class Nodes>
+inline void k_nearest(const KdTree& tree, const Nodes& nodes, const Vec3& p, int k, double max_dist2,
+                      std::vector<Neighbor>& out) {
+    out.clear();
+    if (k <= 0 || tree.empty() || max_dist2 < 0) return;
+    // Reused across queries on this thread: no allocation per query. One
+    // more distance than kept, for the sentinel in front.
+    thread_local std::vector<double> dist2;
+    thread_local std::vector<uint32_t> at;
+    const size_t kept = std::min(size_t(k), tree.size());
+    if (at.size() < kept) {
+        dist2.resize(kept + 1);
+        at.resize(kept);
+    }
+    const size_t found = knn_search(tree, nodes, p, kept, max_dist2, dist2.data() + 1, at.data());
+    out.resize(found);
+    for (size_t i = 0; i < found; ++i) out[i] = {tree.ids[at[i]], dist2[i + 1]};
+}
+
+}  // namespace pt::kdtree_detail
