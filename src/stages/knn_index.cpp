@@ -46,19 +46,20 @@ struct IndexNodes {
     }
 };
 
-/// The first bound of a query is this times the last query's k-th squared
-/// distance (a radius 1.1 times as large): chosen with `bench kdtree`
-/// (PT_KNN_GROWTH2 to try others; docs/photon_mapping.md).
+/// The first bound of a query is this times the larger k-th squared
+/// distance of the last two queries (a radius 1.1 times as large): chosen
+/// with `bench kdtree` (PT_KNN_GROWTH2 to try others; docs/photon_mapping.md).
 #ifndef PT_KNN_GROWTH2
 #define PT_KNN_GROWTH2 1.21
 #endif
 constexpr double kGuessGrowth2 = PT_KNN_GROWTH2;
 
-/// What a thread remembers of its last query on an index.
+/// What a thread remembers of its last two queries on an index with one k:
+/// their k-th squared distances (infinity: no answer of k points).
 struct QueryMemory {
     const KnnIndex* index = nullptr;
     size_t k = 0;
-    double kth_dist2 = std::numeric_limits<double>::infinity();
+    double kth_dist2[2] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
 };
 
 /// This thread's memory for (index, k): pm's two maps alternate, so a few
@@ -74,7 +75,9 @@ QueryMemory& query_memory(const KnnIndex* index, size_t k) {
         if (slot.index == index && slot.k == k) return slot;
     QueryMemory& slot = slots[next];
     next = (next + 1) % kSlots;
-    slot = {index, k, std::numeric_limits<double>::infinity()};
+    slot = QueryMemory{};
+    slot.index = index;
+    slot.k = k;
     return slot;
 }
 
@@ -112,10 +115,12 @@ void k_nearest(const KdTree& tree, const KnnIndex& index, const Vec3& p, int k, 
     }
     const IndexNodes nodes{index.pairs.data(), uint32_t(index.pairs.size())};
     double* best = dist2.data() + 1;
-    // The k-th distance of this thread's last query on this index with this
-    // k, grown by kGuessGrowth2, as the first bound: see the file comment.
+    // The larger k-th distance of this thread's last two queries on this
+    // index with this k, grown by kGuessGrowth2, as the first bound (the
+    // larger of two falls back half as often as the last one alone): see the
+    // file comment.
     QueryMemory& memory = query_memory(&index, kept);
-    const double guess = kGuessGrowth2 * memory.kth_dist2;
+    const double guess = kGuessGrowth2 * std::max(memory.kth_dist2[0], memory.kth_dist2[1]);
     size_t found = 0;
     bool answered = false;
     if (guess < max_dist2) {
@@ -127,7 +132,8 @@ void k_nearest(const KdTree& tree, const KnnIndex& index, const Vec3& p, int k, 
         guess_counts.fell_back += !answered;
     }
     if (!answered) found = kdtree_detail::knn_search(tree, nodes, p, kept, max_dist2, best, at.data());
-    memory.kth_dist2 = found == kept ? best[kept - 1] : std::numeric_limits<double>::infinity();
+    memory.kth_dist2[1] = memory.kth_dist2[0];
+    memory.kth_dist2[0] = found == kept ? best[kept - 1] : std::numeric_limits<double>::infinity();
     out.resize(found);
     for (size_t i = 0; i < found; ++i) out[i] = {tree.ids[at[i]], best[i]};
 }

@@ -19,8 +19,8 @@
 // 10^6 points) are points that a tighter bound would have refused and that
 // are evicted later. Neighbouring queries (a renderer's gathers, pixel
 // after pixel) have nearly the same k-th distance, so the query starts
-// with 1.21 times (a radius 1.1 times) the k-th squared distance of this
-// thread's last query on the same index with the same k. If that finds k
+// with 1.21 times (a radius 1.1 times) the larger k-th squared distance of
+// this thread's last two queries on the same index with the same k. If that finds k
 // points, no two at the same distance, and no point was evicted at the
 // distance of the k-th, the k points are the k nearest and the answer is
 // the only one (no tie to break), which the search without a guess also
