@@ -237,6 +237,8 @@ int run(const GradeOptions& o) {
     Sandbox sandbox = make_sandbox({runners, assets, std::filesystem::absolute(o.manifests_dir).string()},
                                    o.sandbox);
     iso.sandbox_prefix = sandbox.prefix;
+    iso.uid = sandbox.uid;
+    iso.gid = sandbox.gid;
     notes.push_back("isolation of the student code: " + sandbox.description);
     iso.runner = [&](const TaskSpec& t) {
         return std::vector<std::string>{runners + "/grade_runner_" + runner_key(t),

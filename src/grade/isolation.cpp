@@ -18,6 +18,7 @@
 #include "core/error.h"
 #include "core/timer.h"
 #include "grade/grader.h"
+#include "grade/sandbox.h"
 #include "grade/student_calls.h"
 
 namespace pt {
@@ -58,7 +59,9 @@ void limit(int resource, double value) {
 /// The child's side before it runs anything of the student's.
 void enter_child(const Isolation& iso) {
     setsid();  // its own session and process group: killed as a whole
-    prctl(PR_SET_PDEATHSIG, SIGKILL);
+    // Never run the sandbox as root when it was set up for another user.
+    if (!become(iso.uid, iso.gid)) _exit(126);
+    prctl(PR_SET_PDEATHSIG, SIGKILL);  // after the user changes, which clears it
     limit(RLIMIT_CORE, 0);  // a crash leaves no core file
     limit(RLIMIT_AS, iso.memory_bytes);
     limit(RLIMIT_FSIZE, iso.file_bytes);
@@ -246,6 +249,8 @@ TaskResult grade_task_isolated(const TaskSpec& spec, const GradeEnvironment& env
     // bwrap exits with 128 + the signal that killed the runner.
     if (!iso.sandbox_prefix.empty() && code > 128 && code < 128 + 32 && received.empty())
         return failed(spec, "the student code crashed: " + signal_name(code - 128), seconds);
+    if (code == 126 && received.empty() && iso.uid >= 0)
+        return failed(spec, "the runner could not be started as the sandbox's user", seconds);
     if (code == 127 && received.empty())
         return failed(spec, "the runner for this task could not be started (is it built?)", seconds);
     if (code != 0 || received.empty() || uint8_t(received.back()) != 255)

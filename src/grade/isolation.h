@@ -33,6 +33,9 @@ struct Isolation {
     std::function<std::vector<std::string>(const TaskSpec&)> runner;
     /// Put before the runner's command: the bwrap sandbox (sandbox.h); empty: none.
     std::vector<std::string> sandbox_prefix;
+    /// The user and group the child becomes before it runs the prefix
+    /// (Sandbox::uid, gid); -1: this process's.
+    int uid = -1, gid = -1;
     /// Wall-clock seconds for all the tasks of one submission (0 = none):
     /// once spent, the remaining tasks fail without running.
     double budget = 0;

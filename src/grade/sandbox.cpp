@@ -1,18 +1,29 @@
 #include "grade/sandbox.h"
 
+#include <grp.h>
+#include <pwd.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <filesystem>
 
 namespace pt {
+
+bool become(int uid, int gid) {
+    if (gid >= 0 && (setgroups(0, nullptr) != 0 || setgid(gid_t(gid)) != 0)) return false;
+    if (uid >= 0 && setuid(uid_t(uid)) != 0) return false;
+    return true;
+}
+
 namespace {
 
-/// Runs `argv` with its output discarded; true when it exits with 0.
-bool runs(const std::vector<std::string>& argv) {
+/// Runs `argv` with its output discarded (as `uid`/`gid` when not -1);
+/// true when it exits with 0.
+bool runs(const std::vector<std::string>& argv, int uid = -1, int gid = -1) {
     pid_t pid = fork();
     if (pid < 0) return false;
     if (pid == 0) {
+        if (!become(uid, gid)) _exit(126);
         std::vector<char*> a;
         for (const std::string& s : argv)
             a.push_back(const_cast<char*>(s.c_str()));
@@ -77,7 +88,7 @@ std::vector<std::string> build_sandbox_prefix(
     return p;
 }
 
-Sandbox make_sandbox(const std::vector<std::string>& readable, bool use_bwrap) {
+Sandbox make_sandbox(const std::vector<std::string>& readable, bool use_bwrap, int max_processes) {
     Sandbox s;
     const std::string limits = "setrlimit (address space, CPU, file size, open files), own session "
                                "and process group, killed with every leftover process after each task";
@@ -88,6 +99,37 @@ Sandbox make_sandbox(const std::vector<std::string>& readable, bool use_bwrap) {
     std::vector<std::string> p = base_prefix();
     p.insert(p.end(), {"--chdir", "/tmp"});
     bind_all(p, readable, "--ro-bind");
+    const std::string bwrap = "bubblewrap (new PID, network, IPC and UTS namespaces; read-only system and "
+                              "inputs; empty /tmp; no cache, reports or sources) and " +
+                              limits;
+
+    // First choice: a user namespace of its own, with the process limit set
+    // inside it. RLIMIT_NPROC counts per (namespace, user), so only the
+    // runner's processes count; root is exempt from it, so grade run as
+    // root runs the sandbox as nobody. The probe binds the same inputs as
+    // that user: an input nobody may not read fails it here, not a task.
+    if (max_processes > 0) {
+        int uid = -1, gid = -1;
+        if (geteuid() == 0) {
+            const passwd* nobody = getpwnam("nobody");
+            if (nobody) uid = int(nobody->pw_uid), gid = int(nobody->pw_gid);
+        }
+        if (geteuid() != 0 || uid > 0) {
+            std::vector<std::string> q = p;
+            const std::string nproc = std::to_string(max_processes);
+            q.insert(q.begin() + 1, "--unshare-user");
+            q.insert(q.end(), {"--", "prlimit", "--nproc=" + nproc + ":" + nproc});
+            std::vector<std::string> probe = q;
+            probe.push_back("/bin/true");
+            if (runs(probe, uid, gid)) {
+                s.prefix = q;
+                s.uid = uid, s.gid = gid;
+                s.description = bwrap + "; at most " + nproc + " processes and threads (prlimit in its own " +
+                                "user namespace" + (uid > 0 ? ", as the user nobody" : "") + ")";
+                return s;
+            }
+        }
+    }
     std::vector<std::string> probe = p;
     probe.insert(probe.end(), {"--", "/bin/true"});
     if (!runs(probe)) {
@@ -96,9 +138,7 @@ Sandbox make_sandbox(const std::vector<std::string>& readable, bool use_bwrap) {
     }
     p.push_back("--");
     s.prefix = p;
-    s.description = "bubblewrap (new PID, network, IPC and UTS namespaces; read-only system and "
-                    "inputs; empty /tmp; no cache, reports or sources) and " +
-                    limits;
+    s.description = bwrap + "; no process limit (no user namespace for it here)";
     return s;
 }
 

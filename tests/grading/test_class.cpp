@@ -383,3 +383,38 @@ TEST_CASE("grade --class: a student's static initializers run only in the sandbo
     if (!pt::build_sandbox_prefix({}, {}, true).empty())
         CHECK_FALSE(fs::exists(out + "/forged_static"));  // the sandbox has no reports folder
 }
+
+TEST_CASE("grade --class: a fork bomb stops at the sandbox's process limit") {
+    // kate's static initializer forks up to 1000 children that sleep; it
+    // aborts (failing her task) unless fork started failing between 100 and
+    // 1000 children: the sandbox allows 256 processes and threads, counted
+    // in its own user namespace (root is exempt from the limit: grade runs
+    // the sandbox as nobody). Without the limit all 1000 start.
+    const std::string src = PT_SOURCE_DIR, dir = kRoot + "/fork_bomb", out = kRoot + "/fork_bomb_out";
+    fs::remove_all(dir);
+    fs::create_directories(dir + "/kate");
+    fs::copy(src + "/tests/grading/solution/part1", dir + "/kate/part1", fs::copy_options::recursive);
+    std::ofstream(dir + "/kate/part1/camera.cpp", std::ios::app)
+        << "\n#include <cstdlib>\n#include <unistd.h>\nnamespace {\nconst int bomb = [] {\n"
+        << "    int made = 0;\n"
+        << "    for (int i = 0; i < 1000; ++i) {\n"
+        << "        const pid_t p = fork();\n"
+        << "        if (p == 0) { sleep(30); _exit(0); }\n"
+        << "        if (p > 0) ++made;\n"
+        << "    }\n"
+        << "    if (made < 100 || made >= 1000) std::abort();\n"
+        << "    return made;\n}();\n}  // namespace\n";
+    std::string output;
+    REQUIRE_MESSAGE(grade("--class " + dir + " --out " + out + " --task part1.1 --build-dir " + kRoot + "/work -q",
+                          &output) == 0,
+                    output);
+    const std::string report = slurp(out + "/kate/report.md");
+    const std::vector<std::string> rows = lines(slurp(out + "/gradebook.csv"));
+    REQUIRE(rows.size() == 2);
+    if (report.find("at most 256 processes and threads") == std::string::npos) {
+        MESSAGE("no process limit in this sandbox (no user namespace for it): not checked");
+        return;
+    }
+    INFO(report);
+    CHECK(rows[1] == "kate,25,25,25,graded,");
+}
