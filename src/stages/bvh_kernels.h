@@ -233,6 +233,15 @@ class InlineMollerTrumbore : public InlineTriangleSlots {
 
     uint64_t bytes() const { return triangles_.size() * sizeof(TriangleData) + slot_bytes(); }
 
+    /// Whether the slot is a triangle tested inline (not a generic slot), and
+    /// its stored (p0, e1, e2): for the wide BVH's leaf blocks (bvh_leaf_block.h).
+    bool is_inline(uint32_t slot) const { return !is_generic(slot); }
+    void stored(uint32_t slot, Vec3& p0, Vec3& e1, Vec3& e2) const {
+        p0 = triangles_[slot].p0;
+        e1 = triangles_[slot].e1;
+        e2 = triangles_[slot].e2;
+    }
+
   private:
     struct TriangleData {
         Vec3 p0;  ///< first corner

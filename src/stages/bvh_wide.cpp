@@ -5,11 +5,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 #include "core/counters.h"
 #include "scene/scene.h"
 #include "stages/bvh.h"
 #include "stages/bvh_kernels.h"
+#include "stages/bvh_leaf_block.h"
 #include "stages/bvh_wide_slab.h"
 
 namespace pt {
@@ -19,9 +21,13 @@ using namespace bvh_kernels;
 
 /// A child to visit: a wide node, or a leaf's slots.
 struct ChildRef {
-    uint32_t index;  ///< node index, or first slot of a leaf
+    uint32_t index;  ///< node index, or first slot of a leaf (kBlockLeaf: its first block)
     uint32_t count;  ///< 0: a node; else the leaf's primitive count
 };
+
+/// Set in a leaf's child index when the leaf is stored as TriangleBlocks
+/// (bvh_leaf_block.h) and the rest is the index of its first block.
+constexpr uint32_t kBlockLeaf = 0x80000000u;
 
 template <class Tester, int W>
 class WideReferenceBvh final : public Accelerator {
@@ -37,6 +43,9 @@ class WideReferenceBvh final : public Accelerator {
                 float_scene_ = float_scene_ && std::fabs(root.bounds[a]) <= 1e30f &&
                                std::fabs(root.bounds[3 + a]) <= 1e30f;
             nodes_ = collapse_to_wide<W>(bvh, &depth_);
+            if constexpr (kBlocks) {
+                if (simd_ && primitives_.size() < kBlockLeaf) make_blocks();
+            }
         }
     }
 
@@ -93,8 +102,9 @@ class WideReferenceBvh final : public Accelerator {
 
     AcceleratorInfo info() const override {
         uint64_t tree = nodes_.size() * sizeof(Node) + primitives_.size() * sizeof(uint32_t);
+        uint64_t blocks = blocks_.size() * (sizeof(TriangleBlock) + sizeof(uint32_t));
         return {"bvh" + std::to_string(W) + "-" + to_string(split_), nodes_.size(), depth_,
-                tree + tester_.bytes(), tree};
+                tree + tester_.bytes() + blocks, tree};
     }
 
   private:
@@ -118,11 +128,11 @@ class WideReferenceBvh final : public Accelerator {
         return false;
     }
     [[gnu::flatten, gnu::target("avx2")]] bool closest_hit_avx(const Ray& ray, Hit& best, uint32_t& best_slot) const {
-        if constexpr (W == 8) return closest_hit<AvxWideSlab>(ray, best, best_slot);
+        if constexpr (W == 8) return closest_hit<AvxWideSlab, kBlocks>(ray, best, best_slot);
         return false;
     }
     [[gnu::flatten, gnu::target("avx2")]] bool any_hit_avx(const Ray& ray) const {
-        if constexpr (W == 8) return any_hit<AvxWideSlab>(ray);
+        if constexpr (W == 8) return any_hit<AvxWideSlab, kBlocks>(ray);
         return false;
     }
     [[gnu::flatten]] void closest_hit_packet_sse(const Ray* rays, int count, Packet& p) const {
@@ -139,7 +149,7 @@ class WideReferenceBvh final : public Accelerator {
     /// the others wait on the stack with their entry distances and are
     /// skipped once the closest hit lies before them (as in the binary
     /// traversal, bvh_traverse.cpp).
-    template <class Slab>
+    template <class Slab, bool Blocks = false>
     bool closest_hit(const Ray& ray, Hit& best, uint32_t& best_slot) const {
         const SlabRay slab(ray, float_scene_);
         const Slab boxes(slab);
@@ -183,6 +193,34 @@ class WideReferenceBvh final : public Accelerator {
                     current = stack[--size].ref;
                     continue;
                 }
+            } else if (Blocks && (current.index & kBlockLeaf)) {
+#if PT_WIDE_BVH_X86
+                // Four triangles at a time; the lanes' hits are then taken in
+                // slot order with the slot-by-slot loop's rules below, so the
+                // answer is that loop's (a lane beyond a t_max lowered by an
+                // earlier lane is dropped, as the loop would have rejected it).
+                tests += current.count;
+                const uint32_t first = current.index & ~kBlockLeaf;
+                for (uint32_t b = first; (b - first) * 4 < current.count; ++b) {
+                    alignas(32) double t[4], b1[4], b2[4];
+                    unsigned m = intersect_block(blocks_[b], r.o, r.d, r.t_min, r.t_max, t, b1, b2);
+                    for (; m != 0; m &= m - 1) {
+                        const int lane = __builtin_ctz(m);
+                        if (!(t[lane] <= r.t_max)) continue;
+                        const uint32_t slot = block_slot_[b] + uint32_t(lane);
+                        if (found && t[lane] == best.t && primitives_[slot] < primitives_[best_slot]) continue;
+                        best = Hit{};
+                        best.t = t[lane];
+                        best.b1 = b1[lane];
+                        best.b2 = b2[lane];
+                        best_slot = slot;
+                        found = true;
+                        r.t_max = t[lane];
+                        t_box = box_t_max(r.t_max);
+                        t_cull = t_box * kFarScale;
+                    }
+                }
+#endif
             } else {
                 for (uint32_t slot = current.index, end = current.index + current.count; slot < end; ++slot) {
                     ++tests;
@@ -276,9 +314,10 @@ class WideReferenceBvh final : public Accelerator {
                     continue;
                 }
             } else {
+                const uint32_t first_slot = leaf_slot(current.index);
                 for (uint32_t a = active; a != 0; a &= a - 1) {
                     int k = __builtin_ctz(a);
-                    for (uint32_t slot = current.index, end = current.index + current.count; slot < end; ++slot) {
+                    for (uint32_t slot = first_slot, end = first_slot + current.count; slot < end; ++slot) {
                         ++tests;
                         if (!tester_.intersect(slot, r[k], query[k], hit)) continue;
                         // As the single-ray traversal: at equal t the larger id wins.
@@ -317,7 +356,7 @@ class WideReferenceBvh final : public Accelerator {
 
     /// Any hit: the children hit are all kept, in lane order; stops at the
     /// first primitive hit.
-    template <class Slab>
+    template <class Slab, bool Blocks = false>
     bool any_hit(const Ray& ray) const {
         const SlabRay slab(ray, float_scene_);
         const Slab boxes(slab);
@@ -343,6 +382,18 @@ class WideReferenceBvh final : public Accelerator {
                     current = {node.child[first], node.count[first]};
                     continue;
                 }
+            } else if (Blocks && (current.index & kBlockLeaf)) {
+#if PT_WIDE_BVH_X86
+                const uint32_t first = current.index & ~kBlockLeaf;
+                for (uint32_t b = first; (b - first) * 4 < current.count; ++b) {
+                    alignas(32) double t[4], b1[4], b2[4];
+                    tests += std::min<uint32_t>(4, current.count - (b - first) * 4);
+                    if (intersect_block(blocks_[b], ray.o, ray.d, ray.t_min, ray.t_max, t, b1, b2) != 0) {
+                        add_counts(visited, tests);
+                        return true;
+                    }
+                }
+#endif
             } else {
                 for (uint32_t slot = current.index, end = current.index + current.count; slot < end; ++slot) {
                     ++tests;
@@ -359,6 +410,44 @@ class WideReferenceBvh final : public Accelerator {
         return false;
     }
 
+    /// The first slot of a leaf from its child index (a block leaf's or not).
+    uint32_t leaf_slot(uint32_t index) const {
+        return (index & kBlockLeaf) ? block_slot_[index & ~kBlockLeaf] : index;
+    }
+
+    /// Stores every leaf of inline triangles (no sphere or generic slot) as
+    /// TriangleBlocks of four and marks its child index with kBlockLeaf; only
+    /// the AVX2 traversal reads them (the packet traversal maps them back to
+    /// slots with leaf_slot).
+    void make_blocks() {
+        size_t count = 0;  // an upper bound on the blocks, so that they are written once
+        for (const Node& node : nodes_)
+            for (int i = 0; i < W; ++i)
+                count += (node.count[i] + 3u) / 4u;
+        blocks_.reserve(count);
+        block_slot_.reserve(count);
+        for (Node& node : nodes_) {
+            for (int i = 0; i < W; ++i) {
+                const uint32_t first = node.child[i], n = node.count[i];
+                if (n == 0) continue;
+                bool inline_only = true;
+                for (uint32_t s = first; s < first + n; ++s)
+                    inline_only = inline_only && tester_.is_inline(s);
+                if (!inline_only) continue;
+                node.child[i] = uint32_t(blocks_.size()) | kBlockLeaf;
+                for (uint32_t k = 0; k < n; k += 4) {
+                    TriangleBlock& block = blocks_.emplace_back();
+                    for (uint32_t l = 0; l < 4 && k + l < n; ++l) {
+                        Vec3 p0, e1, e2;
+                        tester_.stored(first + k + l, p0, e1, e2);
+                        block.set(int(l), p0, e1, e2);
+                    }
+                    block_slot_.push_back(first + k);
+                }
+            }
+        }
+    }
+
     static void add_counts(uint64_t visited, uint64_t tests) {
         RayCounters& c = thread_counters();
         c.nodes_visited += visited;
@@ -368,6 +457,11 @@ class WideReferenceBvh final : public Accelerator {
     std::vector<uint32_t> primitives_;  ///< slot -> primitive id (FlatBvh::primitives)
     Tester tester_;                     ///< holds a reference to primitives_: declared after it
     std::vector<Node> nodes_;
+    /// Leaves of inline triangles four at a time, for the 8-wide AVX2
+    /// traversal (Moller-Trumbore only); block_slot_: the slot of each block's lane 0.
+    static constexpr bool kBlocks = W == 8 && PT_WIDE_BVH_X86 && std::is_same_v<Tester, InlineMollerTrumbore>;
+    std::vector<TriangleBlock> blocks_;
+    std::vector<uint32_t> block_slot_;
     BvhSplit split_;
     bool simd_;  ///< use the SIMD box test (else the scalar loop; same answers)
     int depth_ = 0;

@@ -20,8 +20,10 @@
 // relative to one triangle test. C_trav = 0.5 and 2, and 32 bins instead of
 // 16, traced incoherent rays within a few per cent of this choice on the
 // bunny and Nefertiti (docs/bvh.md). A node of more than
-// max_leaf primitives is always split; one of at most max_leaf primitives is
-// split only when the SAH says the split is cheaper than the leaf.
+// max_leaf primitives is always split; one of at most min(4, max_leaf) is
+// always a leaf (as Embree's leaves of four: a faster build, and the 8-wide
+// BVH tests four triangles at once, stages/bvh_leaf_block.h); between the
+// two, a node is split only when the SAH says the split is cheaper.
 //
 // Robustness: a node whose centroids all coincide (no split plane separates
 // them) is split in the middle of its primitive list; below depth 48 every
