@@ -10,7 +10,8 @@
 // stay in the tree) is a 32-byte record (its point and split axis) at its
 // breadth-first number h (root 1, children 2h and 2h + 1), two siblings
 // per 64-byte line: 65,535 nodes, 2 MB, for 10^6 points; the top 12 levels
-// (128 kB) stay in L2, and one prefetch fetches both grandchildren pairs.
+// (128 kB) stay in L2, and the two lines of a node's four grandchildren are
+// prefetched while it is examined.
 // The records are exact copies of the tree's doubles and the search is
 // the same code (stages/kdtree_search.h).
 //
