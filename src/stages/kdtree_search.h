@@ -58,11 +58,16 @@ struct PendingCell {
 /// an explicit stack instead of recursion, and the children prefetched
 /// while the parent is examined. The state lives in locals, not in
 /// members, so that the compiler keeps the bound in a register.
-template <class Nodes>
+///
+/// With kDetectTies, *ties is set when the answer may hang on a tie at the
+/// k-th distance: a point evicted from the full best while one at its
+/// distance stays (see stages/knn_index.cpp, which needs it).
+template <class Nodes, bool kDetectTies = false>
 inline size_t knn_search(const KdTree& tree, const Nodes& nodes, const Vec3& p, size_t k, double bound,
-                         double* best_dist2, uint32_t* best_at) {
+                         double* best_dist2, uint32_t* best_at, bool* ties = nullptr) {
     const Vec3* points = tree.points.data();
     size_t count = 0;  // how many of the best are filled
+    [[maybe_unused]] bool tie = false;
     best_dist2[-1] = -1;
 
     // Keeps a point within the bound: inserted into the sorted best from
@@ -70,6 +75,7 @@ inline size_t knn_search(const KdTree& tree, const Nodes& nodes, const Vec3& p, 
     // becomes the k-th distance.
     auto consider = [&](double dist2, uint32_t at) {
         if (!(dist2 <= bound)) return;  // written so that a NaN distance is never kept
+        const bool full = count == k;
         size_t i = count < k ? count++ : k - 1;
         for (; best_dist2[i - 1] > dist2; --i) {
             best_dist2[i] = best_dist2[i - 1];
@@ -77,7 +83,11 @@ inline size_t knn_search(const KdTree& tree, const Nodes& nodes, const Vec3& p, 
         }
         best_dist2[i] = dist2;
         best_at[i] = at;
-        if (count == k) bound = best_dist2[k - 1];
+        if (count == k) {
+            // The evicted point was at the old bound: a tie if the new k-th is there too.
+            if constexpr (kDetectTies) tie = tie || (full && best_dist2[k - 1] == bound);
+            bound = best_dist2[k - 1];
+        }
     };
     // Every point of the bucket [lo, hi), at most kScanBelow of them.
     auto scan_bucket = [&](uint32_t lo, uint32_t hi) {
@@ -155,7 +165,10 @@ inline size_t knn_search(const KdTree& tree, const Nodes& nodes, const Vec3& p, 
             const PendingCell& pending = stack[--top];
             if (pending.dist2 <= bound) next = &pending;
         }
-        if (!next) return count;
+        if (!next) {
+            if constexpr (kDetectTies) *ties = tie;
+            return count;
+        }
         // The parent of cell h is h / 2 (breadth-first numbering).
         consider((nodes.point(next->node, next->heap / 2) - p).norm2(), next->node);
         lo = next->lo;
