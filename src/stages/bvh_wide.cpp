@@ -139,7 +139,7 @@ class WideReferenceBvh final : public Accelerator {
         if constexpr (W == 4) closest_hit_packet<PerRayPacketSlab<4, SseWideSlab>>(rays, count, p);
     }
     [[gnu::flatten, gnu::target("avx2")]] void closest_hit_packet_avx(const Ray* rays, int count, Packet& p) const {
-        if constexpr (W == 8) closest_hit_packet<AvxPacketSlab>(rays, count, p);
+        if constexpr (W == 8) closest_hit_packet<AvxPacketSlab, kBlocks>(rays, count, p);
     }
 #endif
 
@@ -194,33 +194,11 @@ class WideReferenceBvh final : public Accelerator {
                     continue;
                 }
             } else if (Blocks && (current.index & kBlockLeaf)) {
-#if PT_WIDE_BVH_X86
-                // Four triangles at a time; the lanes' hits are then taken in
-                // slot order with the slot-by-slot loop's rules below, so the
-                // answer is that loop's (a lane beyond a t_max lowered by an
-                // earlier lane is dropped, as the loop would have rejected it).
                 tests += current.count;
-                const uint32_t first = current.index & ~kBlockLeaf;
-                for (uint32_t b = first; (b - first) * 4 < current.count; ++b) {
-                    alignas(32) double t[4], b1[4], b2[4];
-                    unsigned m = intersect_block(blocks_[b], r.o, r.d, r.t_min, r.t_max, t, b1, b2);
-                    for (; m != 0; m &= m - 1) {
-                        const int lane = __builtin_ctz(m);
-                        if (!(t[lane] <= r.t_max)) continue;
-                        const uint32_t slot = block_slot_[b] + uint32_t(lane);
-                        if (found && t[lane] == best.t && primitives_[slot] < primitives_[best_slot]) continue;
-                        best = Hit{};
-                        best.t = t[lane];
-                        best.b1 = b1[lane];
-                        best.b2 = b2[lane];
-                        best_slot = slot;
-                        found = true;
-                        r.t_max = t[lane];
-                        t_box = box_t_max(r.t_max);
-                        t_cull = t_box * kFarScale;
-                    }
+                if (block_leaf_closest(current, r, best, best_slot, found)) {
+                    t_box = box_t_max(r.t_max);
+                    t_cull = t_box * kFarScale;
                 }
-#endif
             } else {
                 for (uint32_t slot = current.index, end = current.index + current.count; slot < end; ++slot) {
                     ++tests;
@@ -259,7 +237,7 @@ class WideReferenceBvh final : public Accelerator {
     /// distance among them. A kept child is skipped, for each of its rays, once that
     /// ray's closest hit lies before the child's smallest entry distance (a
     /// conservative cull: a ray kept too long only tests boxes it then misses).
-    template <class PacketSlab>
+    template <class PacketSlab, bool Blocks = false>
     void closest_hit_packet(const Ray* rays, int count, Packet& p) const {
         SlabRay slabs[kPacketSize];
         typename Tester::RayData query[kPacketSize];
@@ -312,6 +290,17 @@ class WideReferenceBvh final : public Accelerator {
                     current = stack[size].ref;
                     active = stack[size].rays;
                     continue;
+                }
+            } else if (Blocks && (current.index & kBlockLeaf)) {
+                for (uint32_t a = active; a != 0; a &= a - 1) {
+                    int k = __builtin_ctz(a);
+                    tests += current.count;
+                    bool found = p.found >> k & 1;
+                    if (block_leaf_closest(current, r[k], p.best[k], p.best_slot[k], found)) {
+                        p.found |= 1u << k;
+                        t_box[k] = box_t_max(r[k].t_max);
+                        t_cull[k] = t_box[k] * kFarScale;
+                    }
                 }
             } else {
                 const uint32_t first_slot = leaf_slot(current.index);
@@ -408,6 +397,39 @@ class WideReferenceBvh final : public Accelerator {
         }
         add_counts(visited, tests);
         return false;
+    }
+
+    /// A block leaf's triangles four at a time against one ray; the lanes'
+    /// hits are then taken in slot order with the slot-by-slot loop's rules
+    /// (a lane beyond a t_max lowered by an earlier lane dropped, the larger
+    /// id at equal t), so the answer is that loop's. Returns whether the
+    /// closest hit changed (then r.t_max is its t). Only inlined into the
+    /// AVX2 entry points (flatten).
+    bool block_leaf_closest(ChildRef leaf, Ray& r, Hit& best, uint32_t& best_slot, bool& found) const {
+        bool changed = false;
+#if PT_WIDE_BVH_X86
+        const uint32_t first = leaf.index & ~kBlockLeaf;
+        for (uint32_t b = first; (b - first) * 4 < leaf.count; ++b) {
+            alignas(32) double t[4], b1[4], b2[4];
+            unsigned m = intersect_block(blocks_[b], r.o, r.d, r.t_min, r.t_max, t, b1, b2);
+            for (; m != 0; m &= m - 1) {
+                const int lane = __builtin_ctz(m);
+                if (!(t[lane] <= r.t_max)) continue;
+                const uint32_t slot = block_slot_[b] + uint32_t(lane);
+                if (found && t[lane] == best.t && primitives_[slot] < primitives_[best_slot]) continue;
+                best = Hit{};
+                best.t = t[lane];
+                best.b1 = b1[lane];
+                best.b2 = b2[lane];
+                best_slot = slot;
+                found = changed = true;
+                r.t_max = t[lane];
+            }
+        }
+#else
+        (void)leaf, (void)r, (void)best, (void)best_slot, (void)found;
+#endif
+        return changed;
     }
 
     /// The first slot of a leaf from its child index (a block leaf's or not).
