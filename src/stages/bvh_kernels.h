@@ -151,10 +151,13 @@ class InlineTriangleSlots {
             Vec3 ng = cross(p1 - p0, p2 - p0);
             if (!(ng / ng.norm()).is_finite()) generic_[slot] = 1;
         }
+        for (uint8_t g : generic_)
+            any_generic_ = any_generic_ || g != 0;
     }
 
   protected:
     bool is_generic(uint32_t slot) const { return generic_[slot] != 0; }
+    bool any_generic() const { return any_generic_; }
     bool intersect_generic(uint32_t slot, const Ray& ray, Hit& hit) const {
         std::optional<Hit> h = intersect_primitive(scene_, stage_, order_[slot], ray);
         if (h) hit = *h;
@@ -180,6 +183,7 @@ class InlineTriangleSlots {
 
   private:
     std::vector<uint8_t> generic_;  ///< 1: test the slot through the stage's routines
+    bool any_generic_ = false;
 };
 
 /// The reference triangle routine (Moller-Trumbore, stages/intersect.cpp)
@@ -190,8 +194,14 @@ class InlineMollerTrumbore : public InlineTriangleSlots {
   public:
     struct RayData {};  ///< Moller-Trumbore needs no per-ray setup
 
-    InlineMollerTrumbore(const Scene& scene, const IntersectStage& stage, const std::vector<uint32_t>& order)
-        : InlineTriangleSlots(scene, stage, order), triangles_(order.size()) {
+    /// `blocks`: the caller (the wide BVH) will test every inline triangle in
+    /// its leaf blocks; then, when every slot is an inline triangle, the
+    /// per-slot copy is not made (stored() reads the scene's corners).
+    InlineMollerTrumbore(const Scene& scene, const IntersectStage& stage, const std::vector<uint32_t>& order,
+                         bool blocks = false)
+        : InlineTriangleSlots(scene, stage, order) {
+        if (blocks && !any_generic()) return;
+        triangles_.resize(order.size());
         for (size_t slot = 0; slot < order.size(); ++slot) {
             if (scene.is_sphere(order[slot])) continue;
             const TriangleRecord& r = scene.triangles[order[slot]];
@@ -228,7 +238,9 @@ class InlineMollerTrumbore : public InlineTriangleSlots {
     /// The shading normal, as reference::intersect_triangle computes it.
     void finish(uint32_t slot, const Ray&, Hit& hit) const {
         if (is_generic(slot)) return;  // the routine filled in everything
-        shading_normal(slot, cross(triangles_[slot].e1, triangles_[slot].e2), hit);
+        Vec3 p0, e1, e2;
+        stored(slot, p0, e1, e2);
+        shading_normal(slot, cross(e1, e2), hit);
     }
 
     uint64_t bytes() const { return triangles_.size() * sizeof(TriangleData) + slot_bytes(); }
@@ -236,7 +248,15 @@ class InlineMollerTrumbore : public InlineTriangleSlots {
     /// Whether the slot is a triangle tested inline (not a generic slot), and
     /// its stored (p0, e1, e2): for the wide BVH's leaf blocks (bvh_leaf_block.h).
     bool is_inline(uint32_t slot) const { return !is_generic(slot); }
+    /// Without the per-slot copy, computed from the scene's corners (the same bits).
     void stored(uint32_t slot, Vec3& p0, Vec3& e1, Vec3& e2) const {
+        if (triangles_.empty()) {
+            const TriangleRecord& r = scene_.triangles[order_[slot]];
+            p0 = scene_.positions[r.v[0]];
+            e1 = scene_.positions[r.v[1]] - p0;
+            e2 = scene_.positions[r.v[2]] - p0;
+            return;
+        }
         p0 = triangles_[slot].p0;
         e1 = triangles_[slot].e1;
         e2 = triangles_[slot].e2;

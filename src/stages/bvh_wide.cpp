@@ -35,8 +35,11 @@ class WideReferenceBvh final : public Accelerator {
     using Node = WideBvhNode<W>;
 
     WideReferenceBvh(const Scene& scene, const IntersectStage& stage, FlatBvh bvh, bool simd)
-        : primitives_(std::move(bvh.primitives)), tester_(scene, stage, primitives_), split_(bvh.split),
-          simd_(simd && PT_WIDE_BVH_X86 && (W == 4 || wide_bvh_has_avx())) {
+        : primitives_(std::move(bvh.primitives)),
+          tester_(make_tester(scene, stage, primitives_,
+                              kBlocks && simd && wide_bvh_has_avx() && !bvh.nodes.empty() &&
+                                  primitives_.size() < kBlockLeaf)),
+          split_(bvh.split), simd_(simd && PT_WIDE_BVH_X86 && (W == 4 || wide_bvh_has_avx())) {
         if (!bvh.nodes.empty()) {
             const FlatBvhNode& root = bvh.nodes[0];
             for (int a = 0; a < 3; ++a)
@@ -430,6 +433,14 @@ class WideReferenceBvh final : public Accelerator {
         (void)leaf, (void)r, (void)best, (void)best_slot, (void)found;
 #endif
         return changed;
+    }
+
+    /// The tester; the Moller-Trumbore one told whether the leaf blocks will
+    /// hold its triangles (then it keeps no per-slot copy of them).
+    static Tester make_tester(const Scene& scene, const IntersectStage& stage, const std::vector<uint32_t>& order,
+                              bool blocks) {
+        if constexpr (std::is_same_v<Tester, InlineMollerTrumbore>) return Tester(scene, stage, order, blocks);
+        else return Tester(scene, stage, order);
     }
 
     /// The first slot of a leaf from its child index (a block leaf's or not).
