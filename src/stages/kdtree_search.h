@@ -181,24 +181,34 @@ inline size_t knn_search(const KdTree& tree, const Nodes& nodes, const Vec3& p, 
     }
 }
 
+/// knn_search's output arrays for `kept` neighbours, reused across queries
+/// on this thread (no allocation per query). `best` has one more distance
+/// in front of it, for knn_search's sentinel.
+struct KnnScratch {
+    double* best;
+    uint32_t* at;
+};
+inline KnnScratch knn_scratch(size_t kept) {
+    thread_local std::vector<double> dist2;
+    thread_local std::vector<uint32_t> at;
+    if (at.size() < kept) {
+        dist2.resize(kept + 1);
+        at.resize(kept);
+    }
+    return {dist2.data() + 1, at.data()};
+}
+
 /// reference::k_nearest's contract (stages/kdtree.h) over knn_search.
 template <class Nodes>
 inline void k_nearest(const KdTree& tree, const Nodes& nodes, const Vec3& p, int k, double max_dist2,
                       std::vector<Neighbor>& out) {
     out.clear();
     if (k <= 0 || tree.empty() || max_dist2 < 0) return;
-    // Reused across queries on this thread: no allocation per query. One
-    // more distance than kept, for the sentinel in front.
-    thread_local std::vector<double> dist2;
-    thread_local std::vector<uint32_t> at;
     const size_t kept = std::min(size_t(k), tree.size());
-    if (at.size() < kept) {
-        dist2.resize(kept + 1);
-        at.resize(kept);
-    }
-    const size_t found = knn_search(tree, nodes, p, kept, max_dist2, dist2.data() + 1, at.data());
+    const KnnScratch s = knn_scratch(kept);
+    const size_t found = knn_search(tree, nodes, p, kept, max_dist2, s.best, s.at);
     out.resize(found);
-    for (size_t i = 0; i < found; ++i) out[i] = {tree.ids[at[i]], dist2[i + 1]};
+    for (size_t i = 0; i < found; ++i) out[i] = {tree.ids[s.at[i]], s.best[i]};
 }
 
 }  // namespace pt::kdtree_detail

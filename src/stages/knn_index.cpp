@@ -104,17 +104,11 @@ void k_nearest(const KdTree& tree, const KnnIndex& index, const Vec3& p, int k, 
         throw std::logic_error("k_nearest: the index was built from another tree");
     out.clear();
     if (k <= 0 || tree.empty() || max_dist2 < 0) return;
-    // Reused across queries on this thread: no allocation per query. One
-    // more distance than kept, for the sentinel in front.
-    thread_local std::vector<double> dist2;
-    thread_local std::vector<uint32_t> at;
     const size_t kept = std::min(size_t(k), tree.size());
-    if (at.size() < kept) {
-        dist2.resize(kept + 1);
-        at.resize(kept);
-    }
+    const kdtree_detail::KnnScratch scratch = kdtree_detail::knn_scratch(kept);
+    double* best = scratch.best;
+    uint32_t* at = scratch.at;
     const IndexNodes nodes{index.pairs.data(), uint32_t(index.pairs.size())};
-    double* best = dist2.data() + 1;
     // The larger k-th distance of this thread's last two queries on this
     // index with this k, grown by kGuessGrowth2, as the first bound (the
     // larger of two falls back half as often as the last one alone): see the
@@ -125,13 +119,13 @@ void k_nearest(const KdTree& tree, const KnnIndex& index, const Vec3& p, int k, 
     bool answered = false;
     if (guess < max_dist2) {
         bool ties = false;
-        found = kdtree_detail::knn_search<IndexNodes, true>(tree, nodes, p, kept, guess, best, at.data(), &ties);
+        found = kdtree_detail::knn_search<IndexNodes, true>(tree, nodes, p, kept, guess, best, at, &ties);
         answered = found == kept && !ties;
         for (size_t i = 1; answered && i < found; ++i) answered = best[i - 1] < best[i];
         ++guess_counts.guessed;
         guess_counts.fell_back += !answered;
     }
-    if (!answered) found = kdtree_detail::knn_search(tree, nodes, p, kept, max_dist2, best, at.data());
+    if (!answered) found = kdtree_detail::knn_search(tree, nodes, p, kept, max_dist2, best, at);
     memory.kth_dist2[1] = memory.kth_dist2[0];
     memory.kth_dist2[0] = found == kept ? best[kept - 1] : std::numeric_limits<double>::infinity();
     out.resize(found);
