@@ -303,17 +303,22 @@ class Builder {
         if (n == 2) return pair_split(begin, p, c, parent_area);
         double best_cost = INFINITY;
         int best_axis = 0, best_k = 0;
+        // Sorted by centroid on each axis, ties by position, through each
+        // one's rank (how many come before it): no branches, which an
+        // insertion sort's mispredictions made the larger cost here. The
+        // ranks on the three axes at once, one vector lane per axis: j
+        // comes before i when c[j] < c[i], or c[j] == c[i] and j < i, that
+        // is c[j] <= c[i] for j < i and c[j] < c[i] for j > i (centroids are
+        // never NaN). A true comparison is all ones (-1), hence the minus.
         uint8_t order[3][kSweepBelow];
+        for (int i = 0; i < n; ++i) {
+            I4 rank = {0, 0, 0, 0};
+            for (int j = 0; j < i; ++j) rank -= I4(c[j] <= c[i]);
+            for (int j = i + 1; j < n; ++j) rank -= I4(c[j] < c[i]);
+            for (int a = 0; a < 3; ++a) order[a][rank[a]] = uint8_t(i);
+        }
         for (int a = 0; a < 3; ++a) {
-            // Sorted by centroid, ties by position, through each one's rank
-            // (how many come before it): no branches, which an insertion
-            // sort's mispredictions made the larger cost here.
-            uint8_t* o = order[a];
-            for (int i = 0; i < n; ++i) {
-                int rank = 0;
-                for (int j = 0; j < n; ++j) rank += (c[j][a] < c[i][a]) | ((c[j][a] == c[i][a]) & (j < i));
-                o[rank] = uint8_t(i);
-            }
+            const uint8_t* o = order[a];
             double right_area[kSweepBelow];
             Box4 right;
             for (int k = n - 1; k > 0; --k) {
