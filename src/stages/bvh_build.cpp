@@ -48,6 +48,10 @@ constexpr double kIntersectionCost = 1.0;
 constexpr int kBins = 16;
 // Nodes of fewer primitives are split by an exact sweep instead of bins.
 constexpr int kSweepBelow = 16;
+// Nodes of at least this many primitives are binned with two sets of bins
+// (Builder::bin_two_sets); smaller ones with one, which saves clearing and
+// merging the second set.
+constexpr size_t kTwoBinSetsFrom = 256;
 // Nodes of at most this many primitives are partitioned out of place
 // (32 bytes each, twice: 256 KB, within the 2 MB L2).
 constexpr size_t kOutOfPlaceBelow = 4096;
@@ -363,17 +367,15 @@ class Builder {
         return mid;
     }
 
-    /// Binned SAH (Wald 2007): one pass drops every centroid into one of
-    /// kBins equal slices of the centroid bounds on each axis; sweeps over
-    /// the bins then give the cost of all kBins - 1 planes per axis.
-    SplitChoice sah_split(size_t begin, size_t end, const Box4& box, const Box4& centroids) {
-        const size_t n = end - begin;
-        // Two sets of bins, for even and odd primitives, merged at the end:
-        // neighbouring primitives usually fall into the same bins, and with
-        // one set each update would wait for the previous one's store.
-        Box4 bins[3][kBins], odd[3][kBins];
-        uint32_t counts[3][kBins] = {}, odd_counts[3][kBins] = {};
-        const Binner binner(centroids);
+    /// Bins prims_[begin, end) into `bins` and `counts` (empty on entry)
+    /// with two sets of bins, for even and odd primitives, merged at the
+    /// end: neighbouring primitives usually fall into the same bins, and
+    /// with one set each update would wait for the previous one's store.
+    /// The same bins as one set (min, max and sums do not depend on order).
+    void bin_two_sets(size_t begin, size_t end, const Binner& binner, Box4 (&bins)[3][kBins],
+                      uint32_t (&counts)[3][kBins]) const {
+        Box4 odd[3][kBins];
+        uint32_t odd_counts[3][kBins] = {};
         size_t i = begin;
         for (; i + 1 < end; i += 2) {
             const PrimRef& p = prims_[i];
@@ -398,6 +400,25 @@ class Builder {
             for (int k = 0; k < kBins; ++k) {
                 bins[a][k].expand(odd[a][k]);
                 counts[a][k] += odd_counts[a][k];
+            }
+    }
+
+    /// Binned SAH (Wald 2007): one pass drops every centroid into one of
+    /// kBins equal slices of the centroid bounds on each axis; sweeps over
+    /// the bins then give the cost of all kBins - 1 planes per axis.
+    SplitChoice sah_split(size_t begin, size_t end, const Box4& box, const Box4& centroids) {
+        const size_t n = end - begin;
+        Box4 bins[3][kBins];
+        uint32_t counts[3][kBins] = {};
+        const Binner binner(centroids);
+        if (n >= kTwoBinSetsFrom) bin_two_sets(begin, end, binner, bins, counts);
+        else
+            for (size_t i = begin; i < end; ++i) {
+                const I4 b = binner.bins(centroid(prims_[i]));
+                for (int a = 0; a < 3; ++a) {
+                    bins[a][b[a]].expand(prims_[i].lo, prims_[i].hi);
+                    ++counts[a][b[a]];
+                }
             }
 
         double parent_area = box.area();
