@@ -543,14 +543,18 @@ class Builder {
         size_t left = 0, right = n;  // out[0, left): left side; out[right, n): right side
         const F4 inf = {INFINITY, INFINITY, INFINITY, INFINITY};
         F4 llo = inf, lhi = -inf, rlo = inf, rhi = -inf;
+        const F4 limits = {limit, limit, limit, limit};
         for (PrimRef* p = lo; p < hi; ++p) {
             const F4 c = centroid(*p);
-            const bool is_left = binner.position(c)[A] < limit;
+            // The side as a mask in all four lanes, all ones on the left:
+            // compared and broadcast in vector registers (through a general
+            // register and back, it was the loop's longest chain).
+            const I4 m = __builtin_shuffle(binner.position(c) < limits, I4{A, A, A, A});
+            const size_t is_left = size_t(m[0] & 1);
             out[left] = *p;
             out[right - 1] = *p;
             left += is_left;
-            right -= !is_left;
-            const I4 m = I4{} - I4{is_left, is_left, is_left, is_left};  // all ones on the left
+            right -= 1 - is_left;
             llo = vmin(F4((I4(c) & m) | (I4(inf) & ~m)), llo);
             lhi = vmax(F4((I4(c) & m) | (I4(-inf) & ~m)), lhi);
             rlo = vmin(F4((I4(c) & ~m) | (I4(inf) & m)), rlo);
