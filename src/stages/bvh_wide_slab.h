@@ -20,6 +20,7 @@
 
 #include "stages/accelerator.h"
 #include "stages/bvh_kernels.h"
+#include "stages/bvh_packet_frustum.h"
 #include "stages/bvh_wide.h"
 
 #if defined(__x86_64__) || defined(__i386__)
@@ -248,9 +249,21 @@ static_assert(kPacketSize == 8, "AvxPacketSlab holds one ray per AVX lane");
 /// picked per ray by the sign of its direction (BLENDVPS with the sign
 /// mask, where the single-ray test indexes the plane), then the same
 /// subtract, multiply, max and min in the same order. Only functions
-/// compiled for AVX2 may use it (AvxWideSlab).
+/// compiled for AVX2 may use it (AvxWideSlab). The children that no ray
+/// of the packet can hit are first cleared all at once by the packet's
+/// frustum (bvh_packet_frustum.h), so only the others are tested ray by ray.
 struct AvxPacketSlab {
-    [[gnu::target("avx2")]] explicit AvxPacketSlab(const SlabRay* slabs) {
+    /// From rays prepared at once (bvh_packet_rays.h).
+    [[gnu::target("avx2")]] explicit AvxPacketSlab(const AvxPacketRays& p) : frustum(p) {
+        for (int a = 0; a < 3; ++a) {
+            o_near[a] = p.o_near[a];
+            o_far[a] = p.o_far[a];
+            inv_near[a] = inv_far[a] = negative[a] = p.inv[a];  // the sign bit selects in BLENDVPS
+        }
+        t_min = p.t_min;
+    }
+    /// From SlabRays built one by one.
+    [[gnu::target("avx2")]] explicit AvxPacketSlab(const SlabRay* slabs) : frustum(slabs) {
         for (int a = 0; a < 3; ++a) {
             alignas(32) float on[8], of[8], in[8], inf[8], neg[8];
             for (int k = 0; k < 8; ++k) {
@@ -271,14 +284,23 @@ struct AvxPacketSlab {
             tm[k] = slabs[k].t_min;
         t_min = _mm256_load_ps(tm);
     }
+    AvxPacketFrustum frustum;
     __m256 o_near[3], o_far[3], inv_near[3], inv_far[3], negative[3], t_min;
 
     [[gnu::target("avx2")]] unsigned test(const WideBvhNode<8>& node, uint32_t active, const float* t_box,
                                           uint32_t lane_rays[8], float lane_t[8]) const {
         const __m256 t_max = _mm256_load_ps(t_box);  // -inf in unused lanes: no hit there
         const __m256 scale = _mm256_set1_ps(kFarScale), inf = _mm256_set1_ps(INFINITY);
+        unsigned candidates = node.valid;
+        if (frustum.usable) {
+            // The largest box t_max of the packet (a bound for the active rays').
+            __m128 m = _mm_max_ps(_mm256_castps256_ps128(t_max), _mm256_extractf128_ps(t_max, 1));
+            m = _mm_max_ps(m, _mm_movehl_ps(m, m));
+            m = _mm_max_ss(m, _mm_shuffle_ps(m, m, 1));
+            candidates = frustum.test(node, _mm_cvtss_f32(m));
+        }
         unsigned any = 0;
-        for (unsigned valid = node.valid; valid != 0; valid &= valid - 1) {
+        for (unsigned valid = candidates; valid != 0; valid &= valid - 1) {
             int c = __builtin_ctz(valid);
             __m256 t_near = t_min, t_far = t_max;
             for (int a = 0; a < 3; ++a) {
