@@ -164,7 +164,7 @@ class WideReferenceBvh final : public Accelerator {
     /// traversal, bvh_traverse.cpp).
     template <class Slab, bool Blocks = false>
     bool closest_hit(const Ray& ray, Hit& best, uint32_t& best_slot) const {
-        const SlabRay slab(ray, float_scene_);
+        const SlabRay slab = slab_ray<Slab>(ray);
         const Slab boxes(slab);
         const typename Tester::RayData query = tester_.prepare(ray);
         Ray r = ray;
@@ -388,7 +388,7 @@ class WideReferenceBvh final : public Accelerator {
     /// first primitive hit.
     template <class Slab, bool Blocks = false>
     bool any_hit(const Ray& ray) const {
-        const SlabRay slab(ray, float_scene_);
+        const SlabRay slab = slab_ray<Slab>(ray);
         const Slab boxes(slab);
         const typename Tester::RayData query = tester_.prepare(ray);
         const float t_box = box_t_max(ray.t_max);
@@ -527,6 +527,16 @@ class WideReferenceBvh final : public Accelerator {
             }
         }
         tester_.finish(p.best_slot[k], ray, hit);
+    }
+
+    /// The ray prepared for slab tests; the 8-wide AVX traversal's without
+    /// branches (the same fields, bvh_wide_slab.h).
+    template <class Slab>
+    SlabRay slab_ray(const Ray& ray) const {
+#if PT_WIDE_BVH_X86
+        if constexpr (std::is_same_v<Slab, AvxWideSlab>) return make_slab_ray_avx(ray, float_scene_);
+#endif
+        return SlabRay(ray, float_scene_);
     }
 
     /// The tester; the Moller-Trumbore one told whether the leaf blocks will
