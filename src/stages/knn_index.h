@@ -64,6 +64,7 @@ struct KnnIndex {
 struct KnnGuessCounts {
     uint64_t guessed = 0;
     uint64_t fell_back = 0;
+    uint64_t crowded = 0;  ///< of the guessed: too many points within the guess, searched with insertions from it
 };
 KnnGuessCounts knn_guess_counts();
 
