@@ -48,6 +48,10 @@ constexpr double kIntersectionCost = 1.0;
 constexpr int kBins = 16;
 // Nodes of fewer primitives are split by an exact sweep instead of bins.
 constexpr int kSweepBelow = 16;
+// Nodes of at least this many primitives are binned with two sets of bins
+// (Builder::bin_two_sets); smaller ones with one, which saves clearing and
+// merging the second set.
+constexpr size_t kTwoBinSetsFrom = 256;
 // Nodes of at most this many primitives are partitioned out of place
 // (32 bytes each, twice: 256 KB, within the 2 MB L2).
 constexpr size_t kOutOfPlaceBelow = 4096;
@@ -120,6 +124,12 @@ struct Box4 {
         if (lo[0] > hi[0]) return 0.0;
         double ex = double(hi[0]) - lo[0], ey = double(hi[1]) - lo[1], ez = double(hi[2]) - lo[2];
         return 2.0 * (ex * ey + ey * ez + ez * ex);
+    }
+    /// area() without a branch (a select instead), for the sweeps.
+    double area_or_zero() const {
+        double ex = double(hi[0]) - lo[0], ey = double(hi[1]) - lo[1], ez = double(hi[2]) - lo[2];
+        const double a = 2.0 * (ex * ey + ey * ez + ez * ex);
+        return lo[0] > hi[0] ? 0.0 : a;
     }
     int widest_axis() const {
         F4 e = hi - lo;
@@ -303,17 +313,22 @@ class Builder {
         if (n == 2) return pair_split(begin, p, c, parent_area);
         double best_cost = INFINITY;
         int best_axis = 0, best_k = 0;
+        // Sorted by centroid on each axis, ties by position, through each
+        // one's rank (how many come before it): no branches, which an
+        // insertion sort's mispredictions made the larger cost here. The
+        // ranks on the three axes at once, one vector lane per axis: j
+        // comes before i when c[j] < c[i], or c[j] == c[i] and j < i, that
+        // is c[j] <= c[i] for j < i and c[j] < c[i] for j > i (centroids are
+        // never NaN). A true comparison is all ones (-1), hence the minus.
         uint8_t order[3][kSweepBelow];
+        for (int i = 0; i < n; ++i) {
+            I4 rank = {0, 0, 0, 0};
+            for (int j = 0; j < i; ++j) rank -= I4(c[j] <= c[i]);
+            for (int j = i + 1; j < n; ++j) rank -= I4(c[j] < c[i]);
+            for (int a = 0; a < 3; ++a) order[a][rank[a]] = uint8_t(i);
+        }
         for (int a = 0; a < 3; ++a) {
-            // Sorted by centroid, ties by position, through each one's rank
-            // (how many come before it): no branches, which an insertion
-            // sort's mispredictions made the larger cost here.
-            uint8_t* o = order[a];
-            for (int i = 0; i < n; ++i) {
-                int rank = 0;
-                for (int j = 0; j < n; ++j) rank += (c[j][a] < c[i][a]) | ((c[j][a] == c[i][a]) & (j < i));
-                o[rank] = uint8_t(i);
-            }
+            const uint8_t* o = order[a];
             double right_area[kSweepBelow];
             Box4 right;
             for (int k = n - 1; k > 0; --k) {
@@ -358,17 +373,15 @@ class Builder {
         return mid;
     }
 
-    /// Binned SAH (Wald 2007): one pass drops every centroid into one of
-    /// kBins equal slices of the centroid bounds on each axis; sweeps over
-    /// the bins then give the cost of all kBins - 1 planes per axis.
-    SplitChoice sah_split(size_t begin, size_t end, const Box4& box, const Box4& centroids) {
-        const size_t n = end - begin;
-        // Two sets of bins, for even and odd primitives, merged at the end:
-        // neighbouring primitives usually fall into the same bins, and with
-        // one set each update would wait for the previous one's store.
-        Box4 bins[3][kBins], odd[3][kBins];
-        uint32_t counts[3][kBins] = {}, odd_counts[3][kBins] = {};
-        const Binner binner(centroids);
+    /// Bins prims_[begin, end) into `bins` and `counts` (empty on entry)
+    /// with two sets of bins, for even and odd primitives, merged at the
+    /// end: neighbouring primitives usually fall into the same bins, and
+    /// with one set each update would wait for the previous one's store.
+    /// The same bins as one set (min, max and sums do not depend on order).
+    void bin_two_sets(size_t begin, size_t end, const Binner& binner, Box4 (&bins)[3][kBins],
+                      uint32_t (&counts)[3][kBins]) const {
+        Box4 odd[3][kBins];
+        uint32_t odd_counts[3][kBins] = {};
         size_t i = begin;
         for (; i + 1 < end; i += 2) {
             const PrimRef& p = prims_[i];
@@ -394,6 +407,25 @@ class Builder {
                 bins[a][k].expand(odd[a][k]);
                 counts[a][k] += odd_counts[a][k];
             }
+    }
+
+    /// Binned SAH (Wald 2007): one pass drops every centroid into one of
+    /// kBins equal slices of the centroid bounds on each axis; sweeps over
+    /// the bins then give the cost of all kBins - 1 planes per axis.
+    SplitChoice sah_split(size_t begin, size_t end, const Box4& box, const Box4& centroids) {
+        const size_t n = end - begin;
+        Box4 bins[3][kBins];
+        uint32_t counts[3][kBins] = {};
+        const Binner binner(centroids);
+        if (n >= kTwoBinSetsFrom) bin_two_sets(begin, end, binner, bins, counts);
+        else
+            for (size_t i = begin; i < end; ++i) {
+                const I4 b = binner.bins(centroid(prims_[i]));
+                for (int a = 0; a < 3; ++a) {
+                    bins[a][b[a]].expand(prims_[i].lo, prims_[i].hi);
+                    ++counts[a][b[a]];
+                }
+            }
 
         double parent_area = box.area();
         double best_cost = INFINITY;
@@ -401,37 +433,36 @@ class Builder {
         for (int a = 0; a < 3; ++a) {
             if (binner.scale[a] == 0.0f) continue;
             // right_area[k], right_count[k]: everything in bins k .. kBins-1.
+            // Both sweeps take every bin and every plane without a branch:
+            // which bins of a small node are empty is a coin toss the branch
+            // predictor loses (the sweep cost as much as binning the
+            // primitives at 16 to 63 of them). An empty bin leaves the box
+            // as it was, so the same bits as skipping it.
             double right_area[kBins];
             uint32_t right_count[kBins];
             Box4 right;
             uint32_t count = 0;
-            double area = 0;
             for (int k = kBins - 1; k > 0; --k) {
-                // An empty bin changes nothing (most bins of a small node are empty).
-                if (counts[a][k] > 0) {
-                    right.expand(bins[a][k]);
-                    count += counts[a][k];
-                    area = right.area();
-                }
-                right_area[k] = area;
+                right.expand(bins[a][k]);
+                count += counts[a][k];
+                right_area[k] = right.area_or_zero();
                 right_count[k] = count;
             }
             Box4 left;
             count = 0;
             for (int k = 1; k < kBins; ++k) {  // the plane between bins k-1 and k
-                // Past an empty bin the plane splits as the previous one did.
-                if (counts[a][k - 1] == 0) continue;
                 left.expand(bins[a][k - 1]);
                 count += counts[a][k - 1];
-                if (right_count[k] == 0) break;
-                double cost = kTraversalCost + kIntersectionCost *
-                                                   (left.area() * count + right_area[k] * right_count[k]) /
-                                                   parent_area;
-                if (cost < best_cost) {
-                    best_cost = cost;
-                    best_axis = a;
-                    best_plane = k;
-                }
+                const double cost = kTraversalCost + kIntersectionCost *
+                                                         (left.area_or_zero() * count + right_area[k] * right_count[k]) /
+                                                         parent_area;
+                // A plane with an empty side splits nothing. One just past an
+                // empty bin splits as the plane before it did, at the same
+                // cost, which `<` never prefers: no need to skip it.
+                const bool better = (count > 0) & (right_count[k] > 0) & (cost < best_cost);
+                best_cost = better ? cost : best_cost;
+                best_axis = better ? a : best_axis;
+                best_plane = better ? k : best_plane;
             }
         }
 
@@ -512,14 +543,18 @@ class Builder {
         size_t left = 0, right = n;  // out[0, left): left side; out[right, n): right side
         const F4 inf = {INFINITY, INFINITY, INFINITY, INFINITY};
         F4 llo = inf, lhi = -inf, rlo = inf, rhi = -inf;
+        const F4 limits = {limit, limit, limit, limit};
         for (PrimRef* p = lo; p < hi; ++p) {
             const F4 c = centroid(*p);
-            const bool is_left = binner.position(c)[A] < limit;
+            // The side as a mask in all four lanes, all ones on the left:
+            // compared and broadcast in vector registers (through a general
+            // register and back, it was the loop's longest chain).
+            const I4 m = __builtin_shuffle(binner.position(c) < limits, I4{A, A, A, A});
+            const size_t is_left = size_t(m[0] & 1);
             out[left] = *p;
             out[right - 1] = *p;
             left += is_left;
-            right -= !is_left;
-            const I4 m = I4{} - I4{is_left, is_left, is_left, is_left};  // all ones on the left
+            right -= 1 - is_left;
             llo = vmin(F4((I4(c) & m) | (I4(inf) & ~m)), llo);
             lhi = vmax(F4((I4(c) & m) | (I4(-inf) & ~m)), lhi);
             rlo = vmin(F4((I4(c) & ~m) | (I4(inf) & m)), rlo);
@@ -578,7 +613,8 @@ FlatBvh build_flat_bvh(const Scene& scene, const AcceleratorSettings& settings) 
     out.primitives.reserve(n);
     Builder builder(std::move(prims), settings.max_leaf, out.split, out);
     builder.build(0, n, 0, box, centroids);
-    out.nodes.shrink_to_fit();
+    // Not shrunk here: the wide BVHs collapse and drop these nodes at once
+    // (a shrinking copy was 1 to 2% of their build); the binary one shrinks them.
     return out;
 }
 

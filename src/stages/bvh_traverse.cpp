@@ -27,6 +27,7 @@ class ReferenceBvh final : public Accelerator, public InspectableBvh {
   public:
     ReferenceBvh(const Scene& scene, const IntersectStage& stage, FlatBvh bvh)
         : bvh_(std::move(bvh)), tester_(scene, stage, bvh_.primitives) {
+        bvh_.nodes.shrink_to_fit();  // build_flat_bvh reserved the most nodes possible
         // Coordinates beyond 1e30 could put hits beyond float range (SlabRay).
         if (!bvh_.nodes.empty()) {
             const FlatBvhNode& root = bvh_.nodes[0];

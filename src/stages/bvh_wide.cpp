@@ -12,6 +12,7 @@
 #include "stages/bvh.h"
 #include "stages/bvh_kernels.h"
 #include "stages/bvh_leaf_block.h"
+#include "stages/bvh_packet_rays.h"
 #include "stages/bvh_wide_slab.h"
 
 namespace pt {
@@ -113,8 +114,14 @@ class WideReferenceBvh final : public Accelerator {
   private:
     /// A packet's results: per ray the closest hit so far and its slot.
     struct Packet {
-        Hit best[kPacketSize];
-        uint32_t best_slot[kPacketSize] = {};
+        // Not initialised (that cost about a twentieth of a packet of
+        // camera rays): ray i's entries are written before they are read,
+        // when its found bit is set.
+        Packet() {}
+        union {
+            Hit best[kPacketSize];
+        };
+        uint32_t best_slot[kPacketSize];
         uint32_t found = 0;  ///< bit i: ray i has a hit
     };
 
@@ -154,7 +161,7 @@ class WideReferenceBvh final : public Accelerator {
     /// traversal, bvh_traverse.cpp).
     template <class Slab, bool Blocks = false>
     bool closest_hit(const Ray& ray, Hit& best, uint32_t& best_slot) const {
-        const SlabRay slab(ray, float_scene_);
+        const SlabRay slab = slab_ray<Slab>(ray);
         const Slab boxes(slab);
         const typename Tester::RayData query = tester_.prepare(ray);
         Ray r = ray;
@@ -242,22 +249,20 @@ class WideReferenceBvh final : public Accelerator {
     /// conservative cull: a ray kept too long only tests boxes it then misses).
     template <class PacketSlab, bool Blocks = false>
     void closest_hit_packet(const Ray* rays, int count, Packet& p) const {
-        SlabRay slabs[kPacketSize];
         typename Tester::RayData query[kPacketSize];
         Ray r[kPacketSize];
         // Unused lanes: an empty interval, so that no box test passes.
         alignas(32) float t_box[kPacketSize], t_cull[kPacketSize];
-        for (int k = 0; k < kPacketSize; ++k) {
-            slabs[k] = SlabRay(rays[k < count ? k : 0], float_scene_);
-            t_box[k] = t_cull[k] = -INFINITY;
-        }
+        SlabRay slabs[kPacketSize];  // the per-ray box tests keep a pointer to these
+        const PacketSlab boxes = prepare_packet_slab<PacketSlab>(rays, count, slabs, t_box);
+        for (int k = count; k < kPacketSize; ++k)
+            t_box[k] = -INFINITY;
+        for (int k = 0; k < kPacketSize; ++k)
+            t_cull[k] = t_box[k] * kFarScale;
         for (int k = 0; k < count; ++k) {
             query[k] = tester_.prepare(rays[k]);
             r[k] = rays[k];
-            t_box[k] = box_t_max(r[k].t_max);
-            t_cull[k] = t_box[k] * kFarScale;
         }
-        const PacketSlab boxes(slabs);
         uint64_t visited = 0, tests = 0;
 
         struct Entry {
@@ -346,11 +351,43 @@ class WideReferenceBvh final : public Accelerator {
         add_counts(visited, tests);
     }
 
+    /// The packet's box test, its rays prepared (unused lanes repeat ray 0;
+    /// in `slabs`, which must outlive it, when prepared one by one), and
+    /// each ray's box_t_max in t_box. AVX2: all rays at once
+    /// (bvh_packet_rays.h), unless one needs SlabRay's special cases.
+    template <class PacketSlab>
+    PacketSlab prepare_packet_slab(const Ray* rays, int count, SlabRay* slabs, float* t_box) const {
+#if PT_WIDE_BVH_X86
+        if constexpr (std::is_same_v<PacketSlab, AvxPacketSlab>)
+            return prepare_packet_slab_avx(rays, count, slabs, t_box);
+        else
+#endif
+            return prepare_packet_slab_scalar<PacketSlab>(rays, count, slabs, t_box);
+    }
+#if PT_WIDE_BVH_X86
+    [[gnu::target("avx2")]] AvxPacketSlab prepare_packet_slab_avx(const Ray* rays, int count, SlabRay* slabs,
+                                                                  float* t_box) const {
+        AvxPacketRays prepared;
+        if (!prepare_packet(rays, count, float_scene_, prepared))
+            return prepare_packet_slab_scalar<AvxPacketSlab>(rays, count, slabs, t_box);
+        _mm256_store_ps(t_box, prepared.t_box);
+        return AvxPacketSlab(prepared);
+    }
+#endif
+    template <class PacketSlab>
+    PacketSlab prepare_packet_slab_scalar(const Ray* rays, int count, SlabRay* slabs, float* t_box) const {
+        for (int k = 0; k < kPacketSize; ++k) {
+            slabs[k] = SlabRay(rays[k < count ? k : 0], float_scene_);
+            t_box[k] = box_t_max(rays[k < count ? k : 0].t_max);
+        }
+        return PacketSlab(slabs);
+    }
+
     /// Any hit: the children hit are all kept, in lane order; stops at the
     /// first primitive hit.
     template <class Slab, bool Blocks = false>
     bool any_hit(const Ray& ray) const {
-        const SlabRay slab(ray, float_scene_);
+        const SlabRay slab = slab_ray<Slab>(ray);
         const Slab boxes(slab);
         const typename Tester::RayData query = tester_.prepare(ray);
         const float t_box = box_t_max(ray.t_max);
@@ -433,6 +470,16 @@ class WideReferenceBvh final : public Accelerator {
         (void)leaf, (void)r, (void)best, (void)best_slot, (void)found;
 #endif
         return changed;
+    }
+
+    /// The ray prepared for slab tests; the 8-wide AVX traversal's without
+    /// branches (the same fields, bvh_wide_slab.h).
+    template <class Slab>
+    SlabRay slab_ray(const Ray& ray) const {
+#if PT_WIDE_BVH_X86
+        if constexpr (std::is_same_v<Slab, AvxWideSlab>) return make_slab_ray_avx(ray, float_scene_);
+#endif
+        return SlabRay(ray, float_scene_);
     }
 
     /// The tester; the Moller-Trumbore one told whether the leaf blocks will

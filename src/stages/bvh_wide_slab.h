@@ -13,8 +13,14 @@
 // plane) never replaces t_near or t_far in any version (bvh_kernels.h).
 #pragma once
 
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <cstring>
+
 #include "stages/accelerator.h"
 #include "stages/bvh_kernels.h"
+#include "stages/bvh_packet_frustum.h"
 #include "stages/bvh_wide.h"
 
 #if defined(__x86_64__) || defined(__i386__)
@@ -119,6 +125,86 @@ struct SseWideSlab {
     }
 };
 
+/// SlabRay's constructor without data-dependent branches, with AVX2: the
+/// same fields bit for bit (tests/bvh compares the two on hard rays). The
+/// scalar constructor's branches on each direction's sign and on each
+/// origin's rounding (float_up/float_down) are unpredictable for incoherent
+/// rays and cost about a tenth of such a ray (docs/bvh.md, sixth run); here
+/// the three axes go through one division and blends: next_float_up and
+/// next_float_down become an integer step of the float's bits (+1 or -1 by
+/// its sign, a zero first made +0 or -0, an infinity kept), chosen per lane
+/// where the scalar code would call them. Only functions compiled for AVX2
+/// may call it.
+[[gnu::target("avx2")]] inline SlabRay make_slab_ray_avx(const Ray& ray, bool float_scene) {
+    SlabRay s;
+    s.t_min = float_down(ray.t_min);
+    const double o_max = std::max({std::fabs(ray.o.x), std::fabs(ray.o.y), std::fabs(ray.o.z)});
+    const double d_max = std::max({std::fabs(ray.d.x), std::fabs(ray.d.y), std::fabs(ray.d.z)});
+    const bool visit_all = !float_scene || !(o_max <= 1e30) || !(d_max >= 1e-7);
+
+    // A mask of 4 x 32 bits from the low 4 bits of a MOVMSKPD result.
+    const __m128i lane_bits = _mm_setr_epi32(1, 2, 4, 8);
+    auto lanes = [&lane_bits](int bits) {
+        return _mm_castsi128_ps(_mm_cmpeq_epi32(_mm_and_si128(_mm_set1_epi32(bits), lane_bits), lane_bits));
+    };
+    const __m128 sign = _mm_set1_ps(-0.0f), inf = _mm_set1_ps(INFINITY), zero = _mm_setzero_ps();
+    const __m128i one = _mm_set1_epi32(1);
+
+    const __m256d o = _mm256_setr_pd(ray.o.x, ray.o.y, ray.o.z, 0.0);
+    const __m256d d = _mm256_setr_pd(ray.d.x, ray.d.y, ray.d.z, 1.0);
+    const __m256d inv = _mm256_div_pd(_mm256_set1_pd(1.0), d);
+    const int neg_bits = _mm256_movemask_pd(inv) & 7;  // signbit(1 / d)
+    const __m128 negative = lanes(neg_bits);
+    const __m128 inv_far = _mm256_cvtpd_ps(inv);  // float(inv)
+    // inv_near: +-FLT_MAX where float(inv) is infinite though d != 0.
+    const __m128 overflow = _mm_and_ps(_mm_cmpeq_ps(_mm_andnot_ps(sign, inv_far), inf),
+                                       lanes(_mm256_movemask_pd(_mm256_cmp_pd(d, _mm256_setzero_pd(), _CMP_NEQ_UQ))));
+    const __m128 inv_near =
+        _mm_blendv_ps(inv_far, _mm_or_ps(_mm_and_ps(inv_far, sign), _mm_set1_ps(FLT_MAX)), overflow);
+
+    __m128 o_near, o_far;
+    if (visit_all) {
+        o_near = _mm_blendv_ps(inf, _mm_xor_ps(inf, sign), negative);  // negative ? -inf : inf
+        o_far = _mm_xor_ps(o_near, sign);
+    } else {
+        const __m128 f = _mm256_cvtpd_ps(o);
+        const __m256d back = _mm256_cvtps_pd(f);
+        // float_up: next_float_up(f) where double(f) < o.
+        const __m128 fu = _mm_andnot_ps(_mm_cmpeq_ps(f, zero), f);  // -0 -> +0
+        const __m128i ge = _mm_castps_si128(_mm_cmpge_ps(fu, zero));
+        const __m128i step_up = _mm_sub_epi32(_mm_sub_epi32(_mm_setzero_si128(), _mm_add_epi32(ge, ge)), one);
+        __m128 next_up = _mm_castsi128_ps(_mm_add_epi32(_mm_castps_si128(fu), step_up));
+        next_up = _mm_blendv_ps(next_up, f, _mm_cmpeq_ps(f, inf));
+        const __m128 up = _mm_blendv_ps(f, next_up, lanes(_mm256_movemask_pd(_mm256_cmp_pd(back, o, _CMP_LT_OQ))));
+        // float_down: next_float_down(f) where double(f) > o.
+        const __m128 fd = _mm_or_ps(f, _mm_and_ps(_mm_cmpeq_ps(f, zero), sign));  // +0 -> -0
+        const __m128i gt = _mm_castps_si128(_mm_cmpgt_ps(fd, zero));
+        const __m128i step_down = _mm_add_epi32(_mm_add_epi32(gt, gt), one);
+        __m128 next_down = _mm_castsi128_ps(_mm_add_epi32(_mm_castps_si128(fd), step_down));
+        next_down = _mm_blendv_ps(next_down, f, _mm_cmpeq_ps(f, _mm_xor_ps(inf, sign)));
+        const __m128 down =
+            _mm_blendv_ps(f, next_down, lanes(_mm256_movemask_pd(_mm256_cmp_pd(back, o, _CMP_GT_OQ))));
+        o_near = _mm_blendv_ps(up, down, negative);
+        o_far = _mm_blendv_ps(down, up, negative);
+    }
+    alignas(16) float v[4];
+    _mm_store_ps(v, o_near);
+    std::memcpy(s.o_near, v, sizeof s.o_near);
+    _mm_store_ps(v, o_far);
+    std::memcpy(s.o_far, v, sizeof s.o_far);
+    _mm_store_ps(v, inv_near);
+    std::memcpy(s.inv_near, v, sizeof s.inv_near);
+    _mm_store_ps(v, inv_far);
+    std::memcpy(s.inv_far, v, sizeof s.inv_far);
+    for (int a = 0; a < 3; ++a) {
+        const uint32_t n = uint32_t(neg_bits >> a & 1);
+        s.negative[a] = n != 0;
+        s.near_plane[a] = uint32_t(a) + 3 * n;
+        s.far_plane[a] = uint32_t(a) + 3 * (1 - n);
+    }
+    return s;
+}
+
 /// 8 lanes with AVX. Only functions compiled for AVX2 (target attribute) may
 /// construct or call it; stages/bvh_wide.cpp checks the processor first.
 /// Not "fma": with FMA enabled GCC contracts a * b - c * d in the inlined
@@ -163,9 +249,21 @@ static_assert(kPacketSize == 8, "AvxPacketSlab holds one ray per AVX lane");
 /// picked per ray by the sign of its direction (BLENDVPS with the sign
 /// mask, where the single-ray test indexes the plane), then the same
 /// subtract, multiply, max and min in the same order. Only functions
-/// compiled for AVX2 may use it (AvxWideSlab).
+/// compiled for AVX2 may use it (AvxWideSlab). The children that no ray
+/// of the packet can hit are first cleared all at once by the packet's
+/// frustum (bvh_packet_frustum.h), so only the others are tested ray by ray.
 struct AvxPacketSlab {
-    [[gnu::target("avx2")]] explicit AvxPacketSlab(const SlabRay* slabs) {
+    /// From rays prepared at once (bvh_packet_rays.h).
+    [[gnu::target("avx2")]] explicit AvxPacketSlab(const AvxPacketRays& p) : frustum(p) {
+        for (int a = 0; a < 3; ++a) {
+            o_near[a] = p.o_near[a];
+            o_far[a] = p.o_far[a];
+            inv_near[a] = inv_far[a] = negative[a] = p.inv[a];  // the sign bit selects in BLENDVPS
+        }
+        t_min = p.t_min;
+    }
+    /// From SlabRays built one by one.
+    [[gnu::target("avx2")]] explicit AvxPacketSlab(const SlabRay* slabs) : frustum(slabs) {
         for (int a = 0; a < 3; ++a) {
             alignas(32) float on[8], of[8], in[8], inf[8], neg[8];
             for (int k = 0; k < 8; ++k) {
@@ -186,14 +284,23 @@ struct AvxPacketSlab {
             tm[k] = slabs[k].t_min;
         t_min = _mm256_load_ps(tm);
     }
+    AvxPacketFrustum frustum;
     __m256 o_near[3], o_far[3], inv_near[3], inv_far[3], negative[3], t_min;
 
     [[gnu::target("avx2")]] unsigned test(const WideBvhNode<8>& node, uint32_t active, const float* t_box,
                                           uint32_t lane_rays[8], float lane_t[8]) const {
         const __m256 t_max = _mm256_load_ps(t_box);  // -inf in unused lanes: no hit there
         const __m256 scale = _mm256_set1_ps(kFarScale), inf = _mm256_set1_ps(INFINITY);
+        unsigned candidates = node.valid;
+        if (frustum.usable) {
+            // The largest box t_max of the packet (a bound for the active rays').
+            __m128 m = _mm_max_ps(_mm256_castps256_ps128(t_max), _mm256_extractf128_ps(t_max, 1));
+            m = _mm_max_ps(m, _mm_movehl_ps(m, m));
+            m = _mm_max_ss(m, _mm_shuffle_ps(m, m, 1));
+            candidates = frustum.test(node, _mm_cvtss_f32(m));
+        }
         unsigned any = 0;
-        for (unsigned valid = node.valid; valid != 0; valid &= valid - 1) {
+        for (unsigned valid = candidates; valid != 0; valid &= valid - 1) {
             int c = __builtin_ctz(valid);
             __m256 t_near = t_min, t_far = t_max;
             for (int a = 0; a < 3; ++a) {
