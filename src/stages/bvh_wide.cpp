@@ -90,7 +90,7 @@ class WideReferenceBvh final : public Accelerator {
                 hits[i] = std::nullopt;
                 continue;
             }
-            tester_.finish(p.best_slot[i], rays[i], p.best[i]);
+            finish_packet_hit(p, i, rays[i], p.best[i]);
             p.best[i].primitive = primitives_[p.best_slot[i]];
             hits[i] = p.best[i];
         }
@@ -112,6 +112,7 @@ class WideReferenceBvh final : public Accelerator {
     }
 
   private:
+    static constexpr uint32_t kNoLane = UINT32_MAX;
     /// A packet's results: per ray the closest hit so far and its slot.
     struct Packet {
         // Not initialised (that cost about a twentieth of a packet of
@@ -122,6 +123,8 @@ class WideReferenceBvh final : public Accelerator {
             Hit best[kPacketSize];
         };
         uint32_t best_slot[kPacketSize];
+        /// For a closest hit found in a leaf block: 4 * block + lane; else kNoLane.
+        uint32_t best_lane[kPacketSize] = {kNoLane, kNoLane, kNoLane, kNoLane, kNoLane, kNoLane, kNoLane, kNoLane};
         uint32_t found = 0;  ///< bit i: ray i has a hit
     };
 
@@ -300,15 +303,12 @@ class WideReferenceBvh final : public Accelerator {
                     continue;
                 }
             } else if (Blocks && (current.index & kBlockLeaf)) {
-                for (uint32_t a = active; a != 0; a &= a - 1) {
-                    int k = __builtin_ctz(a);
-                    tests += current.count;
-                    bool found = p.found >> k & 1;
-                    if (block_leaf_closest(current, r[k], p.best[k], p.best_slot[k], found)) {
-                        p.found |= 1u << k;
-                        t_box[k] = box_t_max(r[k].t_max);
-                        t_cull[k] = t_box[k] * kFarScale;
-                    }
+                tests += uint64_t(current.count) * uint64_t(__builtin_popcount(active));
+                for (uint32_t changed = block_leaf_closest_packet(current, active, r, p); changed != 0;
+                     changed &= changed - 1) {
+                    const int k = __builtin_ctz(changed);
+                    t_box[k] = box_t_max(r[k].t_max);
+                    t_cull[k] = t_box[k] * kFarScale;
                 }
             } else {
                 const uint32_t first_slot = leaf_slot(current.index);
@@ -323,6 +323,7 @@ class WideReferenceBvh final : public Accelerator {
                             continue;
                         p.best[k] = hit;
                         p.best_slot[k] = slot;
+                        p.best_lane[k] = kNoLane;
                         p.found |= 1u << k;
                         r[k].t_max = hit.t;
                         t_box[k] = box_t_max(r[k].t_max);
@@ -470,6 +471,62 @@ class WideReferenceBvh final : public Accelerator {
         (void)leaf, (void)r, (void)best, (void)best_slot, (void)found;
 #endif
         return changed;
+    }
+
+    /// block_leaf_closest for each active ray of a packet (per ray the
+    /// blocks in slot order, so the same answers), the blocks in the outer
+    /// loop so that each is fetched once for the packet. Also notes the
+    /// block and lane of each new closest hit in p.best_lane, from which
+    /// finish_packet_hit takes the triangle's edges. Returns the rays whose
+    /// closest hit changed.
+    uint32_t block_leaf_closest_packet(ChildRef leaf, uint32_t active, Ray* r, Packet& p) const {
+        uint32_t changed = 0;
+#if PT_WIDE_BVH_X86
+        const uint32_t first = leaf.index & ~kBlockLeaf;
+        for (uint32_t b = first; (b - first) * 4 < leaf.count; ++b) {
+            for (uint32_t a = active; a != 0; a &= a - 1) {
+                const int k = __builtin_ctz(a);
+                alignas(32) double t[4], b1[4], b2[4];
+                unsigned m = intersect_block(blocks_[b], r[k].o, r[k].d, r[k].t_min, r[k].t_max, t, b1, b2);
+                for (; m != 0; m &= m - 1) {
+                    const int lane = __builtin_ctz(m);
+                    if (!(t[lane] <= r[k].t_max)) continue;
+                    const uint32_t slot = block_slot_[b] + uint32_t(lane);
+                    if ((p.found >> k & 1) && t[lane] == p.best[k].t && primitives_[slot] < primitives_[p.best_slot[k]])
+                        continue;
+                    Hit& best = p.best[k];
+                    best = Hit{};
+                    best.t = t[lane];
+                    best.b1 = b1[lane];
+                    best.b2 = b2[lane];
+                    p.best_slot[k] = slot;
+                    p.best_lane[k] = b * 4 + uint32_t(lane);
+                    p.found |= 1u << k;
+                    changed |= 1u << k;
+                    r[k].t_max = t[lane];
+                }
+            }
+        }
+#else
+        (void)leaf, (void)active, (void)r, (void)p;
+#endif
+        return changed;
+    }
+
+    /// tester_.finish for ray k's closest hit; for a hit found in a block,
+    /// with the block's edges (the same bits as the tester's, bvh_leaf_block.h),
+    /// so that the triangle is not fetched through the scene.
+    void finish_packet_hit(const Packet& p, int k, const Ray& ray, Hit& hit) const {
+        if constexpr (kBlocks) {
+            if (p.best_lane[k] != kNoLane) {
+                const TriangleBlock& block = blocks_[p.best_lane[k] / 4];
+                const int l = int(p.best_lane[k] % 4);
+                tester_.finish_from_edges(p.best_slot[k], Vec3(block.e1[0][l], block.e1[1][l], block.e1[2][l]),
+                                          Vec3(block.e2[0][l], block.e2[1][l], block.e2[2][l]), hit);
+                return;
+            }
+        }
+        tester_.finish(p.best_slot[k], ray, hit);
     }
 
     /// The ray prepared for slab tests; the 8-wide AVX traversal's without
