@@ -29,6 +29,14 @@
 // equal reference::k_nearest's bit for bit, ties included, whatever the
 // order of the queries; only the time depends on it.
 //
+// How the guessed query runs (issue 19, round 4): on a processor with AVX2
+// it collects every point within the guess unsorted, then counts each
+// one's rank (how many are nearer) with AVX2 on float copies of the
+// distances and places the k of rank below k; a tie among them (or with the
+// next) shows as a repeated rank and falls back. When more than 2k + 16
+// points lie within the guess it runs the sorted insertion of
+// stages/kdtree_search.h from the guess instead (as without AVX2).
+//
 // Tests: tests/unit/test_knn_index.cpp; cost in `bench kdtree`.
 #pragma once
 
@@ -64,6 +72,7 @@ struct KnnIndex {
 struct KnnGuessCounts {
     uint64_t guessed = 0;
     uint64_t fell_back = 0;
+    uint64_t crowded = 0;  ///< of the guessed: too many points within the guess, searched with insertions from it
 };
 KnnGuessCounts knn_guess_counts();
 

@@ -10,6 +10,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <vector>
 
@@ -192,6 +193,78 @@ TEST_CASE("knn index: a tie for the k-th place is broken as the tree query break
     }
     CHECK(trials == 600);
     CHECK(differ == 0);
+}
+
+// The guessed query collects the points within the guess and places them
+// by ranks counted on float copies of their distances (stages/knn_index.cpp).
+// Two distances that differ in double but round to the same float must not
+// be ordered by chance: here the k-th and the (k+1)-th nearest differ by
+// about 1e-12 relative (one float), so the query must fall back and still
+// answer as the tree query does. And a guess far too large for the next
+// query (a sparse cloud, then a dense one) crowds the collection: those
+// queries search with insertions from the guess, with the same answers.
+TEST_CASE("knn index: float ranks never order two distances that round alike; crowded guesses") {
+    Rng rng(43);
+    int differ = 0, trials = 0;
+    std::vector<Neighbor> plain, indexed;
+    const KnnGuessCounts before = knn_guess_counts();
+    for (int trial = 0; trial < 100; ++trial) {
+        std::vector<Vec3> points(3000);
+        for (Vec3& p : points) p = {rng.next_1d() - 0.5, rng.next_1d() - 0.5, rng.next_1d() - 0.5};
+        // Two points just outside the 29 nearest, 1e-12 apart in distance.
+        std::vector<double> d2;
+        for (const Vec3& p : points) d2.push_back(p.norm2());
+        std::nth_element(d2.begin(), d2.begin() + 29, d2.end());
+        const double r = std::sqrt(d2[29]) * 0.999999;
+        points.push_back({r, 0, 0});
+        points.push_back({0, r * (1 + 1e-12), 0});
+        const KdTree tree = reference::build_kdtree(points);
+        const KnnIndex index = build_knn_index(tree);
+        for (int repeat = 0; repeat < 2; ++repeat) {  // the second from the first's guess
+            for (int k : {30, 31}) {
+                reference::k_nearest(tree, Vec3(0), k, 1e300, plain);
+                reference::k_nearest(tree, index, Vec3(0), k, 1e300, indexed);
+                bool same = plain.size() == indexed.size();
+                for (size_t i = 0; same && i < plain.size(); ++i)
+                    same = plain[i].id == indexed[i].id && plain[i].dist2 == indexed[i].dist2;
+                differ += !same;
+                ++trials;
+            }
+        }
+    }
+    CHECK(trials == 400);
+    CHECK(differ == 0);
+
+    // One tree: a sparse cloud in [0, 1]^3 and a dense one in [2, 2.1]^3;
+    // queries alternate between the two, so every dense query's guess is
+    // the sparse one's.
+    std::vector<Vec3> points;
+    for (int i = 0; i < 2000; ++i) points.push_back({rng.next_1d(), rng.next_1d(), rng.next_1d()});
+    for (int i = 0; i < 20000; ++i)
+        points.push_back({2 + 0.1 * rng.next_1d(), 2 + 0.1 * rng.next_1d(), 2 + 0.1 * rng.next_1d()});
+    const KdTree tree = reference::build_kdtree(points);
+    const KnnIndex index = build_knn_index(tree);
+    const KnnGuessCounts middle = knn_guess_counts();
+    differ = 0;
+    for (int q = 0; q < 400; ++q) {
+        const Vec3 p = q % 2 == 0 ? Vec3(0.2 + 0.6 * rng.next_1d(), 0.2 + 0.6 * rng.next_1d(), 0.5)
+                                  : Vec3(2.02 + 0.06 * rng.next_1d(), 2.05, 2.02 + 0.06 * rng.next_1d());
+        reference::k_nearest(tree, p, 20, 1e300, plain);
+        reference::k_nearest(tree, index, p, 20, 1e300, indexed);
+        bool same = plain.size() == indexed.size();
+        for (size_t i = 0; same && i < plain.size(); ++i)
+            same = plain[i].id == indexed[i].id && plain[i].dist2 == indexed[i].dist2;
+        differ += !same;
+    }
+    const KnnGuessCounts after = knn_guess_counts();
+    CHECK(differ == 0);
+    // With AVX2 the float ties fell back (with their k = 31 the ranks
+    // tie) and the dense queries were crowded; without it the guessed
+    // queries all use insertions.
+    if (__builtin_cpu_supports("avx2")) {
+        CHECK(middle.fell_back - before.fell_back >= 100);
+        CHECK(after.crowded - middle.crowded >= 150);
+    }
 }
 
 TEST_CASE("knn index: k in the thousands, and an index of another tree is refused") {
