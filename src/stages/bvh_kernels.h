@@ -140,18 +140,23 @@ class InlineTriangleSlots {
   public:
     InlineTriangleSlots(const Scene& scene, const IntersectStage& stage, const std::vector<uint32_t>& order)
         : scene_(scene), stage_(stage), order_(order), generic_(order.size(), 0) {
-        for (size_t slot = 0; slot < order.size(); ++slot) {
-            uint32_t prim = order[slot];
+        // Decided in primitive order, which reads the scene's arrays in
+        // sequence (in slot order they were read at random), then given to
+        // the slots.
+        std::vector<uint8_t> generic(scene.primitive_count(), 0);
+        for (uint32_t prim = 0; prim < generic.size(); ++prim) {
             if (scene.is_sphere(prim)) {
-                generic_[slot] = 1;
+                generic[prim] = 1;
                 continue;
             }
             const TriangleRecord& r = scene.triangles[prim];
             vertex_normals_ = vertex_normals_ || r.n[0] != kNoIndex;
             const Vec3 &p0 = scene.positions[r.v[0]], &p1 = scene.positions[r.v[1]], &p2 = scene.positions[r.v[2]];
             Vec3 ng = cross(p1 - p0, p2 - p0);
-            if (!(ng / ng.norm()).is_finite()) generic_[slot] = 1;
+            if (!(ng / ng.norm()).is_finite()) generic[prim] = 1;
         }
+        for (size_t slot = 0; slot < order.size(); ++slot)
+            generic_[slot] = order[slot] < generic.size() ? generic[order[slot]] : 1;
         for (uint8_t g : generic_)
             any_generic_ = any_generic_ || g != 0;
     }
