@@ -55,16 +55,17 @@ class WideReferenceBvh final : public Accelerator {
 
     std::optional<Hit> intersect(const Ray& ray) const override {
         Hit best;
-        uint32_t best_slot = 0;
+        uint32_t best_slot = 0, best_lane = kNoLane;
         if (nodes_.empty()) return std::nullopt;
         bool found = false;
 #if PT_WIDE_BVH_X86
-        if (simd_) found = W == 4 ? closest_hit_sse(ray, best, best_slot) : closest_hit_avx(ray, best, best_slot);
+        if (simd_)
+            found = W == 4 ? closest_hit_sse(ray, best, best_slot) : closest_hit_avx(ray, best, best_slot, best_lane);
         else
 #endif
             found = closest_hit<ScalarWideSlab<W>>(ray, best, best_slot);
         if (!found) return std::nullopt;
-        tester_.finish(best_slot, ray, best);
+        finish_hit(best_slot, best_lane, ray, best);
         best.primitive = primitives_[best_slot];
         return best;
     }
@@ -140,8 +141,9 @@ class WideReferenceBvh final : public Accelerator {
         if constexpr (W == 4) return any_hit<SseWideSlab>(ray);
         return false;
     }
-    [[gnu::flatten, gnu::target("avx2")]] bool closest_hit_avx(const Ray& ray, Hit& best, uint32_t& best_slot) const {
-        if constexpr (W == 8) return closest_hit<AvxWideSlab, kBlocks>(ray, best, best_slot);
+    [[gnu::flatten, gnu::target("avx2")]] bool closest_hit_avx(const Ray& ray, Hit& best, uint32_t& best_slot,
+                                                               uint32_t& best_lane) const {
+        if constexpr (W == 8) return closest_hit<AvxWideSlab, kBlocks>(ray, best, best_slot, &best_lane);
         return false;
     }
     [[gnu::flatten, gnu::target("avx2")]] bool any_hit_avx(const Ray& ray) const {
@@ -163,7 +165,7 @@ class WideReferenceBvh final : public Accelerator {
     /// skipped once the closest hit lies before them (as in the binary
     /// traversal, bvh_traverse.cpp).
     template <class Slab, bool Blocks = false>
-    bool closest_hit(const Ray& ray, Hit& best, uint32_t& best_slot) const {
+    bool closest_hit(const Ray& ray, Hit& best, uint32_t& best_slot, uint32_t* best_lane = nullptr) const {
         const SlabRay slab = slab_ray<Slab>(ray);
         const Slab boxes(slab);
         const typename Tester::RayData query = tester_.prepare(ray);
@@ -208,7 +210,7 @@ class WideReferenceBvh final : public Accelerator {
                 }
             } else if (Blocks && (current.index & kBlockLeaf)) {
                 tests += current.count;
-                if (block_leaf_closest(current, r, best, best_slot, found)) {
+                if (block_leaf_closest(current, r, best, best_slot, best_lane, found)) {
                     t_box = box_t_max(r.t_max);
                     t_cull = t_box * kFarScale;
                 }
@@ -220,6 +222,7 @@ class WideReferenceBvh final : public Accelerator {
                     if (found && hit.t == best.t && primitives_[slot] < primitives_[best_slot]) continue;
                     best = hit;
                     best_slot = slot;
+                    if (best_lane) *best_lane = kNoLane;
                     found = true;
                     r.t_max = hit.t;
                     t_box = box_t_max(r.t_max);
@@ -446,7 +449,8 @@ class WideReferenceBvh final : public Accelerator {
     /// id at equal t), so the answer is that loop's. Returns whether the
     /// closest hit changed (then r.t_max is its t). Only inlined into the
     /// AVX2 entry points (flatten).
-    bool block_leaf_closest(ChildRef leaf, Ray& r, Hit& best, uint32_t& best_slot, bool& found) const {
+    bool block_leaf_closest(ChildRef leaf, Ray& r, Hit& best, uint32_t& best_slot, uint32_t* best_lane,
+                            bool& found) const {
         bool changed = false;
 #if PT_WIDE_BVH_X86
         const uint32_t first = leaf.index & ~kBlockLeaf;
@@ -463,12 +467,13 @@ class WideReferenceBvh final : public Accelerator {
                 best.b1 = b1[lane];
                 best.b2 = b2[lane];
                 best_slot = slot;
+                if (best_lane) *best_lane = b * 4 + uint32_t(lane);
                 found = changed = true;
                 r.t_max = t[lane];
             }
         }
 #else
-        (void)leaf, (void)r, (void)best, (void)best_slot, (void)found;
+        (void)leaf, (void)r, (void)best, (void)best_slot, (void)best_lane, (void)found;
 #endif
         return changed;
     }
@@ -527,6 +532,22 @@ class WideReferenceBvh final : public Accelerator {
             }
         }
         tester_.finish(p.best_slot[k], ray, hit);
+    }
+
+    /// tester_.finish for a single ray's closest hit; for a hit found in a
+    /// block (best_lane: 4 * block + lane), with the block's edges, as
+    /// finish_packet_hit, so that the triangle is not fetched through the scene.
+    void finish_hit(uint32_t slot, uint32_t best_lane, const Ray& ray, Hit& hit) const {
+        if constexpr (kBlocks) {
+            if (best_lane != kNoLane) {
+                const TriangleBlock& block = blocks_[best_lane / 4];
+                const int l = int(best_lane % 4);
+                tester_.finish_from_edges(slot, Vec3(block.e1[0][l], block.e1[1][l], block.e1[2][l]),
+                                          Vec3(block.e2[0][l], block.e2[1][l], block.e2[2][l]), hit);
+                return;
+            }
+        }
+        tester_.finish(slot, ray, hit);
     }
 
     /// The ray prepared for slab tests; the 8-wide AVX traversal's without
