@@ -60,11 +60,10 @@ class WideReferenceBvh final : public Accelerator {
         bool found = false;
 #if PT_WIDE_BVH_X86
         if (simd_)
-            found = W == 4 ? closest_hit_sse(ray, best, best_slot, best_lane)
-                           : closest_hit_avx(ray, best, best_slot, best_lane);
+            found = W == 4 ? closest_hit_sse(ray, best, best_slot) : closest_hit_avx(ray, best, best_slot, best_lane);
         else
 #endif
-            found = closest_hit<ScalarWideSlab<W>>(ray, best, best_slot, best_lane);
+            found = closest_hit<ScalarWideSlab<W>>(ray, best, best_slot);
         if (!found) return std::nullopt;
         finish_hit(best_slot, best_lane, ray, best);
         best.primitive = primitives_[best_slot];
@@ -92,7 +91,7 @@ class WideReferenceBvh final : public Accelerator {
                 hits[i] = std::nullopt;
                 continue;
             }
-            finish_hit(p.best_slot[i], p.best_lane[i], rays[i], p.best[i]);
+            finish_packet_hit(p, i, rays[i], p.best[i]);
             p.best[i].primitive = primitives_[p.best_slot[i]];
             hits[i] = p.best[i];
         }
@@ -134,8 +133,8 @@ class WideReferenceBvh final : public Accelerator {
     // The SIMD entry points: each inlines the whole traversal (flatten), so
     // that the box test runs in registers; the AVX2 ones are compiled for
     // AVX2 and only called when the processor has it (simd_).
-    [[gnu::flatten]] bool closest_hit_sse(const Ray& ray, Hit& best, uint32_t& best_slot, uint32_t& best_lane) const {
-        if constexpr (W == 4) return closest_hit<SseWideSlab>(ray, best, best_slot, best_lane);
+    [[gnu::flatten]] bool closest_hit_sse(const Ray& ray, Hit& best, uint32_t& best_slot) const {
+        if constexpr (W == 4) return closest_hit<SseWideSlab>(ray, best, best_slot);
         return false;
     }
     [[gnu::flatten]] bool any_hit_sse(const Ray& ray) const {
@@ -144,7 +143,7 @@ class WideReferenceBvh final : public Accelerator {
     }
     [[gnu::flatten, gnu::target("avx2")]] bool closest_hit_avx(const Ray& ray, Hit& best, uint32_t& best_slot,
                                                                uint32_t& best_lane) const {
-        if constexpr (W == 8) return closest_hit<AvxWideSlab, kBlocks>(ray, best, best_slot, best_lane);
+        if constexpr (W == 8) return closest_hit<AvxWideSlab, kBlocks>(ray, best, best_slot, &best_lane);
         return false;
     }
     [[gnu::flatten, gnu::target("avx2")]] bool any_hit_avx(const Ray& ray) const {
@@ -166,7 +165,7 @@ class WideReferenceBvh final : public Accelerator {
     /// skipped once the closest hit lies before them (as in the binary
     /// traversal, bvh_traverse.cpp).
     template <class Slab, bool Blocks = false>
-    bool closest_hit(const Ray& ray, Hit& best, uint32_t& best_slot, uint32_t& best_lane) const {
+    bool closest_hit(const Ray& ray, Hit& best, uint32_t& best_slot, uint32_t* best_lane = nullptr) const {
         const SlabRay slab = slab_ray<Slab>(ray);
         const Slab boxes(slab);
         const typename Tester::RayData query = tester_.prepare(ray);
@@ -223,7 +222,7 @@ class WideReferenceBvh final : public Accelerator {
                     if (found && hit.t == best.t && primitives_[slot] < primitives_[best_slot]) continue;
                     best = hit;
                     best_slot = slot;
-                    best_lane = kNoLane;
+                    if (best_lane) *best_lane = kNoLane;
                     found = true;
                     r.t_max = hit.t;
                     t_box = box_t_max(r.t_max);
@@ -450,8 +449,7 @@ class WideReferenceBvh final : public Accelerator {
     /// id at equal t), so the answer is that loop's. Returns whether the
     /// closest hit changed (then r.t_max is its t). Only inlined into the
     /// AVX2 entry points (flatten).
-    /// Also notes the new closest hit's block and lane in best_lane (finish_hit).
-    bool block_leaf_closest(ChildRef leaf, Ray& r, Hit& best, uint32_t& best_slot, uint32_t& best_lane,
+    bool block_leaf_closest(ChildRef leaf, Ray& r, Hit& best, uint32_t& best_slot, uint32_t* best_lane,
                             bool& found) const {
         bool changed = false;
 #if PT_WIDE_BVH_X86
@@ -469,7 +467,7 @@ class WideReferenceBvh final : public Accelerator {
                 best.b1 = b1[lane];
                 best.b2 = b2[lane];
                 best_slot = slot;
-                best_lane = b * 4 + uint32_t(lane);
+                if (best_lane) *best_lane = b * 4 + uint32_t(lane);
                 found = changed = true;
                 r.t_max = t[lane];
             }
@@ -484,7 +482,7 @@ class WideReferenceBvh final : public Accelerator {
     /// blocks in slot order, so the same answers), the blocks in the outer
     /// loop so that each is fetched once for the packet. Also notes the
     /// block and lane of each new closest hit in p.best_lane, from which
-    /// finish_hit takes the triangle's edges. Returns the rays whose
+    /// finish_packet_hit takes the triangle's edges. Returns the rays whose
     /// closest hit changed.
     uint32_t block_leaf_closest_packet(ChildRef leaf, uint32_t active, Ray* r, Packet& p) const {
         uint32_t changed = 0;
@@ -520,15 +518,30 @@ class WideReferenceBvh final : public Accelerator {
         return changed;
     }
 
-    /// tester_.finish for a closest hit; for one found in a block (lane:
-    /// 4 * block + lane, else kNoLane), with the block's edges (the same bits
-    /// as the tester's, bvh_leaf_block.h), so that the triangle is not
-    /// fetched again through the scene (about 70 ns a hit on the bunny).
-    void finish_hit(uint32_t slot, uint32_t lane, const Ray& ray, Hit& hit) const {
+    /// tester_.finish for ray k's closest hit; for a hit found in a block,
+    /// with the block's edges (the same bits as the tester's, bvh_leaf_block.h),
+    /// so that the triangle is not fetched through the scene.
+    void finish_packet_hit(const Packet& p, int k, const Ray& ray, Hit& hit) const {
         if constexpr (kBlocks) {
-            if (lane != kNoLane) {
-                const TriangleBlock& block = blocks_[lane / 4];
-                const int l = int(lane % 4);
+            if (p.best_lane[k] != kNoLane) {
+                const TriangleBlock& block = blocks_[p.best_lane[k] / 4];
+                const int l = int(p.best_lane[k] % 4);
+                tester_.finish_from_edges(p.best_slot[k], Vec3(block.e1[0][l], block.e1[1][l], block.e1[2][l]),
+                                          Vec3(block.e2[0][l], block.e2[1][l], block.e2[2][l]), hit);
+                return;
+            }
+        }
+        tester_.finish(p.best_slot[k], ray, hit);
+    }
+
+    /// tester_.finish for a single ray's closest hit; for a hit found in a
+    /// block (best_lane: 4 * block + lane), with the block's edges, as
+    /// finish_packet_hit, so that the triangle is not fetched through the scene.
+    void finish_hit(uint32_t slot, uint32_t best_lane, const Ray& ray, Hit& hit) const {
+        if constexpr (kBlocks) {
+            if (best_lane != kNoLane) {
+                const TriangleBlock& block = blocks_[best_lane / 4];
+                const int l = int(best_lane % 4);
                 tester_.finish_from_edges(slot, Vec3(block.e1[0][l], block.e1[1][l], block.e1[2][l]),
                                           Vec3(block.e2[0][l], block.e2[1][l], block.e2[2][l]), hit);
                 return;
