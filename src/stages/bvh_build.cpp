@@ -6,6 +6,10 @@
 #include <cmath>
 #include <cstring>
 
+#if defined(__SSE__)
+#include <xmmintrin.h>
+#endif
+
 #include "core/error.h"
 #include "scene/scene.h"
 #include "stages/bvh.h"
@@ -72,9 +76,16 @@ constexpr size_t kForcedLeaf = 4;
 typedef float F4 __attribute__((vector_size(16)));
 typedef int32_t I4 __attribute__((vector_size(16)));
 
-/// MINPS and MAXPS: b when either is NaN.
+/// MINPS and MAXPS: b when either is NaN. Through the intrinsics on x86:
+/// inlined, GCC compiled the selects below as a compare and three logic
+/// operations in most places (111 of them), not as one MINPS or MAXPS.
+#if defined(__SSE__)
+inline F4 vmin(F4 a, F4 b) { return F4(_mm_min_ps(__m128(a), __m128(b))); }
+inline F4 vmax(F4 a, F4 b) { return F4(_mm_max_ps(__m128(a), __m128(b))); }
+#else
 inline F4 vmin(F4 a, F4 b) { return a < b ? a : b; }
 inline F4 vmax(F4 a, F4 b) { return a > b ? a : b; }
+#endif
 
 /// One primitive during the build, 32 bytes (the old 48-byte record with a
 /// stored centroid moved 1.5 times the memory in every partition): its

@@ -140,17 +140,23 @@ class InlineTriangleSlots {
   public:
     InlineTriangleSlots(const Scene& scene, const IntersectStage& stage, const std::vector<uint32_t>& order)
         : scene_(scene), stage_(stage), order_(order), generic_(order.size(), 0) {
-        for (size_t slot = 0; slot < order.size(); ++slot) {
-            uint32_t prim = order[slot];
+        // Decided in primitive order, which reads the scene's arrays in
+        // sequence (in slot order they were read at random), then given to
+        // the slots.
+        std::vector<uint8_t> generic(scene.primitive_count(), 0);
+        for (uint32_t prim = 0; prim < generic.size(); ++prim) {
             if (scene.is_sphere(prim)) {
-                generic_[slot] = 1;
+                generic[prim] = 1;
                 continue;
             }
-            const TriangleRecord& r = scene.triangles[prim];  // the corners only, not the normals
+            const TriangleRecord& r = scene.triangles[prim];
+            vertex_normals_ = vertex_normals_ || r.n[0] != kNoIndex;
             const Vec3 &p0 = scene.positions[r.v[0]], &p1 = scene.positions[r.v[1]], &p2 = scene.positions[r.v[2]];
             Vec3 ng = cross(p1 - p0, p2 - p0);
-            if (!(ng / ng.norm()).is_finite()) generic_[slot] = 1;
+            if (!(ng / ng.norm()).is_finite()) generic[prim] = 1;
         }
+        for (size_t slot = 0; slot < order.size(); ++slot)
+            generic_[slot] = order[slot] < generic.size() ? generic[order[slot]] : 1;
         for (uint8_t g : generic_)
             any_generic_ = any_generic_ || g != 0;
     }
@@ -166,6 +172,7 @@ class InlineTriangleSlots {
     /// hit.n from the unnormalised geometric normal and the vertex normals.
     void shading_normal(uint32_t slot, const Vec3& ng, Hit& hit) const {
         hit.n = ng / ng.norm();
+        if (!vertex_normals_) return;  // no triangle has them: not worth fetching the record
         const TriangleRecord& r = scene_.triangles[order_[slot]];
         if (r.n[0] != kNoIndex) {
             double b1 = hit.b1, b2 = hit.b2;
@@ -184,6 +191,7 @@ class InlineTriangleSlots {
   private:
     std::vector<uint8_t> generic_;  ///< 1: test the slot through the stage's routines
     bool any_generic_ = false;
+    bool vertex_normals_ = false;  ///< some triangle has vertex normals
 };
 
 /// The reference triangle routine (Moller-Trumbore, stages/intersect.cpp)
@@ -240,6 +248,13 @@ class InlineMollerTrumbore : public InlineTriangleSlots {
         if (is_generic(slot)) return;  // the routine filled in everything
         Vec3 p0, e1, e2;
         stored(slot, p0, e1, e2);
+        shading_normal(slot, cross(e1, e2), hit);
+    }
+
+    /// finish() for an inline slot whose (e1, e2) the caller holds (the
+    /// same bits as stored()'s: the wide BVH's leaf blocks), so that the
+    /// triangle is not fetched again.
+    void finish_from_edges(uint32_t slot, const Vec3& e1, const Vec3& e2, Hit& hit) const {
         shading_normal(slot, cross(e1, e2), hit);
     }
 

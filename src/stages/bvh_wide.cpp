@@ -55,16 +55,17 @@ class WideReferenceBvh final : public Accelerator {
 
     std::optional<Hit> intersect(const Ray& ray) const override {
         Hit best;
-        uint32_t best_slot = 0;
+        uint32_t best_slot = 0, best_lane = kNoLane;
         if (nodes_.empty()) return std::nullopt;
         bool found = false;
 #if PT_WIDE_BVH_X86
-        if (simd_) found = W == 4 ? closest_hit_sse(ray, best, best_slot) : closest_hit_avx(ray, best, best_slot);
+        if (simd_)
+            found = W == 4 ? closest_hit_sse(ray, best, best_slot) : closest_hit_avx(ray, best, best_slot, best_lane);
         else
 #endif
             found = closest_hit<ScalarWideSlab<W>>(ray, best, best_slot);
         if (!found) return std::nullopt;
-        tester_.finish(best_slot, ray, best);
+        finish_hit(best_slot, best_lane, ray, best);
         best.primitive = primitives_[best_slot];
         return best;
     }
@@ -90,7 +91,7 @@ class WideReferenceBvh final : public Accelerator {
                 hits[i] = std::nullopt;
                 continue;
             }
-            tester_.finish(p.best_slot[i], rays[i], p.best[i]);
+            finish_packet_hit(p, i, rays[i], p.best[i]);
             p.best[i].primitive = primitives_[p.best_slot[i]];
             hits[i] = p.best[i];
         }
@@ -112,6 +113,7 @@ class WideReferenceBvh final : public Accelerator {
     }
 
   private:
+    static constexpr uint32_t kNoLane = UINT32_MAX;
     /// A packet's results: per ray the closest hit so far and its slot.
     struct Packet {
         // Not initialised (that cost about a twentieth of a packet of
@@ -122,6 +124,8 @@ class WideReferenceBvh final : public Accelerator {
             Hit best[kPacketSize];
         };
         uint32_t best_slot[kPacketSize];
+        /// For a closest hit found in a leaf block: 4 * block + lane; else kNoLane.
+        uint32_t best_lane[kPacketSize] = {kNoLane, kNoLane, kNoLane, kNoLane, kNoLane, kNoLane, kNoLane, kNoLane};
         uint32_t found = 0;  ///< bit i: ray i has a hit
     };
 
@@ -137,8 +141,9 @@ class WideReferenceBvh final : public Accelerator {
         if constexpr (W == 4) return any_hit<SseWideSlab>(ray);
         return false;
     }
-    [[gnu::flatten, gnu::target("avx2")]] bool closest_hit_avx(const Ray& ray, Hit& best, uint32_t& best_slot) const {
-        if constexpr (W == 8) return closest_hit<AvxWideSlab, kBlocks>(ray, best, best_slot);
+    [[gnu::flatten, gnu::target("avx2")]] bool closest_hit_avx(const Ray& ray, Hit& best, uint32_t& best_slot,
+                                                               uint32_t& best_lane) const {
+        if constexpr (W == 8) return closest_hit<AvxWideSlab, kBlocks>(ray, best, best_slot, &best_lane);
         return false;
     }
     [[gnu::flatten, gnu::target("avx2")]] bool any_hit_avx(const Ray& ray) const {
@@ -160,7 +165,7 @@ class WideReferenceBvh final : public Accelerator {
     /// skipped once the closest hit lies before them (as in the binary
     /// traversal, bvh_traverse.cpp).
     template <class Slab, bool Blocks = false>
-    bool closest_hit(const Ray& ray, Hit& best, uint32_t& best_slot) const {
+    bool closest_hit(const Ray& ray, Hit& best, uint32_t& best_slot, uint32_t* best_lane = nullptr) const {
         const SlabRay slab = slab_ray<Slab>(ray);
         const Slab boxes(slab);
         const typename Tester::RayData query = tester_.prepare(ray);
@@ -205,7 +210,7 @@ class WideReferenceBvh final : public Accelerator {
                 }
             } else if (Blocks && (current.index & kBlockLeaf)) {
                 tests += current.count;
-                if (block_leaf_closest(current, r, best, best_slot, found)) {
+                if (block_leaf_closest(current, r, best, best_slot, best_lane, found)) {
                     t_box = box_t_max(r.t_max);
                     t_cull = t_box * kFarScale;
                 }
@@ -217,6 +222,7 @@ class WideReferenceBvh final : public Accelerator {
                     if (found && hit.t == best.t && primitives_[slot] < primitives_[best_slot]) continue;
                     best = hit;
                     best_slot = slot;
+                    if (best_lane) *best_lane = kNoLane;
                     found = true;
                     r.t_max = hit.t;
                     t_box = box_t_max(r.t_max);
@@ -300,15 +306,12 @@ class WideReferenceBvh final : public Accelerator {
                     continue;
                 }
             } else if (Blocks && (current.index & kBlockLeaf)) {
-                for (uint32_t a = active; a != 0; a &= a - 1) {
-                    int k = __builtin_ctz(a);
-                    tests += current.count;
-                    bool found = p.found >> k & 1;
-                    if (block_leaf_closest(current, r[k], p.best[k], p.best_slot[k], found)) {
-                        p.found |= 1u << k;
-                        t_box[k] = box_t_max(r[k].t_max);
-                        t_cull[k] = t_box[k] * kFarScale;
-                    }
+                tests += uint64_t(current.count) * uint64_t(__builtin_popcount(active));
+                for (uint32_t changed = block_leaf_closest_packet(current, active, r, p); changed != 0;
+                     changed &= changed - 1) {
+                    const int k = __builtin_ctz(changed);
+                    t_box[k] = box_t_max(r[k].t_max);
+                    t_cull[k] = t_box[k] * kFarScale;
                 }
             } else {
                 const uint32_t first_slot = leaf_slot(current.index);
@@ -323,6 +326,7 @@ class WideReferenceBvh final : public Accelerator {
                             continue;
                         p.best[k] = hit;
                         p.best_slot[k] = slot;
+                        p.best_lane[k] = kNoLane;
                         p.found |= 1u << k;
                         r[k].t_max = hit.t;
                         t_box[k] = box_t_max(r[k].t_max);
@@ -445,7 +449,8 @@ class WideReferenceBvh final : public Accelerator {
     /// id at equal t), so the answer is that loop's. Returns whether the
     /// closest hit changed (then r.t_max is its t). Only inlined into the
     /// AVX2 entry points (flatten).
-    bool block_leaf_closest(ChildRef leaf, Ray& r, Hit& best, uint32_t& best_slot, bool& found) const {
+    bool block_leaf_closest(ChildRef leaf, Ray& r, Hit& best, uint32_t& best_slot, uint32_t* best_lane,
+                            bool& found) const {
         bool changed = false;
 #if PT_WIDE_BVH_X86
         const uint32_t first = leaf.index & ~kBlockLeaf;
@@ -462,14 +467,87 @@ class WideReferenceBvh final : public Accelerator {
                 best.b1 = b1[lane];
                 best.b2 = b2[lane];
                 best_slot = slot;
+                if (best_lane) *best_lane = b * 4 + uint32_t(lane);
                 found = changed = true;
                 r.t_max = t[lane];
             }
         }
 #else
-        (void)leaf, (void)r, (void)best, (void)best_slot, (void)found;
+        (void)leaf, (void)r, (void)best, (void)best_slot, (void)best_lane, (void)found;
 #endif
         return changed;
+    }
+
+    /// block_leaf_closest for each active ray of a packet (per ray the
+    /// blocks in slot order, so the same answers), the blocks in the outer
+    /// loop so that each is fetched once for the packet. Also notes the
+    /// block and lane of each new closest hit in p.best_lane, from which
+    /// finish_packet_hit takes the triangle's edges. Returns the rays whose
+    /// closest hit changed.
+    uint32_t block_leaf_closest_packet(ChildRef leaf, uint32_t active, Ray* r, Packet& p) const {
+        uint32_t changed = 0;
+#if PT_WIDE_BVH_X86
+        const uint32_t first = leaf.index & ~kBlockLeaf;
+        for (uint32_t b = first; (b - first) * 4 < leaf.count; ++b) {
+            for (uint32_t a = active; a != 0; a &= a - 1) {
+                const int k = __builtin_ctz(a);
+                alignas(32) double t[4], b1[4], b2[4];
+                unsigned m = intersect_block(blocks_[b], r[k].o, r[k].d, r[k].t_min, r[k].t_max, t, b1, b2);
+                for (; m != 0; m &= m - 1) {
+                    const int lane = __builtin_ctz(m);
+                    if (!(t[lane] <= r[k].t_max)) continue;
+                    const uint32_t slot = block_slot_[b] + uint32_t(lane);
+                    if ((p.found >> k & 1) && t[lane] == p.best[k].t && primitives_[slot] < primitives_[p.best_slot[k]])
+                        continue;
+                    Hit& best = p.best[k];
+                    best = Hit{};
+                    best.t = t[lane];
+                    best.b1 = b1[lane];
+                    best.b2 = b2[lane];
+                    p.best_slot[k] = slot;
+                    p.best_lane[k] = b * 4 + uint32_t(lane);
+                    p.found |= 1u << k;
+                    changed |= 1u << k;
+                    r[k].t_max = t[lane];
+                }
+            }
+        }
+#else
+        (void)leaf, (void)active, (void)r, (void)p;
+#endif
+        return changed;
+    }
+
+    /// tester_.finish for ray k's closest hit; for a hit found in a block,
+    /// with the block's edges (the same bits as the tester's, bvh_leaf_block.h),
+    /// so that the triangle is not fetched through the scene.
+    void finish_packet_hit(const Packet& p, int k, const Ray& ray, Hit& hit) const {
+        if constexpr (kBlocks) {
+            if (p.best_lane[k] != kNoLane) {
+                const TriangleBlock& block = blocks_[p.best_lane[k] / 4];
+                const int l = int(p.best_lane[k] % 4);
+                tester_.finish_from_edges(p.best_slot[k], Vec3(block.e1[0][l], block.e1[1][l], block.e1[2][l]),
+                                          Vec3(block.e2[0][l], block.e2[1][l], block.e2[2][l]), hit);
+                return;
+            }
+        }
+        tester_.finish(p.best_slot[k], ray, hit);
+    }
+
+    /// tester_.finish for a single ray's closest hit; for a hit found in a
+    /// block (best_lane: 4 * block + lane), with the block's edges, as
+    /// finish_packet_hit, so that the triangle is not fetched through the scene.
+    void finish_hit(uint32_t slot, uint32_t best_lane, const Ray& ray, Hit& hit) const {
+        if constexpr (kBlocks) {
+            if (best_lane != kNoLane) {
+                const TriangleBlock& block = blocks_[best_lane / 4];
+                const int l = int(best_lane % 4);
+                tester_.finish_from_edges(slot, Vec3(block.e1[0][l], block.e1[1][l], block.e1[2][l]),
+                                          Vec3(block.e2[0][l], block.e2[1][l], block.e2[2][l]), hit);
+                return;
+            }
+        }
+        tester_.finish(slot, ray, hit);
     }
 
     /// The ray prepared for slab tests; the 8-wide AVX traversal's without
