@@ -265,7 +265,7 @@ std::string usage(const std::string& program, StageSet default_student) {
       << "  --bvh-width 2|4|8  children per node of the reference BVH (4: SSE,\n"
       << "                   8: AVX2, scalar where the processor lacks it)     [8]\n"
       << "  --packets on|off  camera rays of 8 neighbouring pixels traced together\n"
-      << "                   (the same image either way)                         [off]\n"
+      << "                   (the same image either way)                         [on]\n"
       << "  --bvh-view PATH highlight the BVH node at PATH (L/R steps from the root)\n"
       << "  --bvh-depth-image FILE.png  also write a heat map of BVH nodes visited per pixel\n"
       << "  --sampler independent|stratified|halton|sobol|zsobol                   ["

@@ -40,7 +40,7 @@ struct Options {
     std::string triangle_test = "moller";  ///< --triangle moller|watertight
     std::optional<std::string> bvh_view;   ///< --bvh-view PATH
     std::string bvh_depth_image;           ///< --bvh-depth-image FILE.png
-    bool packets = false;  ///< --packets on|off (render/camera_packets.h)
+    bool packets = true;  ///< --packets on|off (render/camera_packets.h); on: faster where it applies (docs/accel.md)
     bool help = false;                 ///< -h / --help
 };
 
