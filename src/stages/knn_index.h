@@ -35,7 +35,10 @@
 // distances and places the k of rank below k; a tie among them (or with the
 // next) shows as a repeated rank and falls back. When more than 2k + 16
 // points lie within the guess it runs the sorted insertion of
-// stages/kdtree_search.h from the guess instead (as without AVX2).
+// stages/kdtree_search.h from the guess instead (as without AVX2). A
+// query far from this thread's last one (more than 4 times its k-th
+// distance away) lists the buckets within the guess first and prefetches
+// them, so that their cache misses overlap.
 //
 // Tests: tests/unit/test_knn_index.cpp; cost in `bench kdtree`.
 #pragma once
