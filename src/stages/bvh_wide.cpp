@@ -195,6 +195,14 @@ class WideReferenceBvh final : public Accelerator {
                         current = {node.child[i], node.count[i]};
                         continue;
                     }
+                    if ((mask & (mask - 1)) == 0) {  // two: the farther kept, the nearer entered (the sort's order)
+                        const int k = __builtin_ctz(mask);
+                        const bool i_first = t_enter[i] < t_enter[k];
+                        const int near = i_first ? i : k, far = i_first ? k : i;
+                        stack[size++] = {{node.child[far], node.count[far]}, t_enter[far]};
+                        current = {node.child[near], node.count[near]};
+                        continue;
+                    }
                     const int run = size;
                     stack[size++] = {{node.child[i], node.count[i]}, t_enter[i]};
                     for (; mask != 0; mask &= mask - 1) {
