@@ -181,12 +181,26 @@ struct Binner {
 /// float_down and float_up (flat_bvh.h) with a select instead of a branch
 /// on "did float() round the wrong way", which is a coin toss per
 /// coordinate: the same results, 6 mispredictions fewer per primitive.
+/// The step to the next float is next_float_down / next_float_up's with
+/// selects for their special cases, as far as the step is ever taken: only
+/// when float(x) lies beyond x, so never down from -inf, up from +inf or from
+/// NaN; from +-0 to the smallest denormal of x's sign.
 inline float round_down(double x) {
-    float f = float(x), d = next_float_down(f);
+    const float f = float(x);
+    uint32_t bits;
+    std::memcpy(&bits, &f, sizeof bits);
+    bits = f > 0 ? bits - 1 : f == 0 ? 0x80000001u : bits + 1;
+    float d;
+    std::memcpy(&d, &bits, sizeof d);
     return double(f) > x ? d : f;
 }
 inline float round_up(double x) {
-    float f = float(x), u = next_float_up(f);
+    const float f = float(x);
+    uint32_t bits;
+    std::memcpy(&bits, &f, sizeof bits);
+    bits = f > 0 ? bits + 1 : f == 0 ? 0x00000001u : bits - 1;
+    float u;
+    std::memcpy(&u, &bits, sizeof u);
     return double(f) < x ? u : f;
 }
 
@@ -595,7 +609,9 @@ FlatBvh build_flat_bvh(const Scene& scene, const AcceleratorSettings& settings) 
     const uint32_t n = scene.primitive_count();
     if (n == 0) return out;
 
-    std::vector<PrimRef> prims(n);
+    // Reserved, not sized: sizing would first zero them all.
+    std::vector<PrimRef> prims;
+    prims.reserve(n);
     Box4 box, centroids;
     for (uint32_t i = 0; i < n; ++i) {
         BBox b;
@@ -614,10 +630,11 @@ FlatBvh build_flat_bvh(const Scene& scene, const AcceleratorSettings& settings) 
         }
         float id;
         std::memcpy(&id, &i, sizeof id);
-        prims[i].lo = F4{round_down(b.min.x), round_down(b.min.y), round_down(b.min.z), id};
-        prims[i].hi = F4{round_up(b.max.x), round_up(b.max.y), round_up(b.max.z), 0.0f};
-        box.expand(prims[i].lo, prims[i].hi);
-        centroids.expand(centroid(prims[i]));
+        const PrimRef& p = prims.emplace_back(
+            PrimRef{F4{round_down(b.min.x), round_down(b.min.y), round_down(b.min.z), id},
+                    F4{round_up(b.max.x), round_up(b.max.y), round_up(b.max.z), 0.0f}});
+        box.expand(p.lo, p.hi);
+        centroids.expand(centroid(p));
     }
     // At most 2n - 1 nodes: reserving them keeps emplace_back from copying.
     out.nodes.reserve(2 * size_t(n) - 1);
