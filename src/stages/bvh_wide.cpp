@@ -264,7 +264,7 @@ class WideReferenceBvh final : public Accelerator {
     template <class PacketSlab, bool Blocks = false>
     void closest_hit_packet(const Ray* rays, int count, Packet& p) const {
         typename Tester::RayData query[kPacketSize];
-        Ray r[kPacketSize];
+        double t_max[kPacketSize];  // each ray's interval ends here (its closest hit so far)
         // Unused lanes: an empty interval, so that no box test passes.
         alignas(32) float t_box[kPacketSize], t_cull[kPacketSize];
         SlabRay slabs[kPacketSize];  // the per-ray box tests keep a pointer to these
@@ -275,7 +275,7 @@ class WideReferenceBvh final : public Accelerator {
             t_cull[k] = t_box[k] * kFarScale;
         for (int k = 0; k < count; ++k) {
             query[k] = tester_.prepare(rays[k]);
-            r[k] = rays[k];
+            t_max[k] = rays[k].t_max;
         }
         uint64_t visited = 0, tests = 0;
 
@@ -315,19 +315,21 @@ class WideReferenceBvh final : public Accelerator {
                 }
             } else if (Blocks && (current.index & kBlockLeaf)) {
                 tests += uint64_t(current.count) * uint64_t(__builtin_popcount(active));
-                for (uint32_t changed = block_leaf_closest_packet(current, active, r, p); changed != 0;
+                for (uint32_t changed = block_leaf_closest_packet(current, active, rays, t_max, p); changed != 0;
                      changed &= changed - 1) {
                     const int k = __builtin_ctz(changed);
-                    t_box[k] = box_t_max(r[k].t_max);
+                    t_box[k] = box_t_max(t_max[k]);
                     t_cull[k] = t_box[k] * kFarScale;
                 }
             } else {
                 const uint32_t first_slot = leaf_slot(current.index);
                 for (uint32_t a = active; a != 0; a &= a - 1) {
                     int k = __builtin_ctz(a);
+                    Ray r = rays[k];
+                    r.t_max = t_max[k];
                     for (uint32_t slot = first_slot, end = first_slot + current.count; slot < end; ++slot) {
                         ++tests;
-                        if (!tester_.intersect(slot, r[k], query[k], hit)) continue;
+                        if (!tester_.intersect(slot, r, query[k], hit)) continue;
                         // As the single-ray traversal: at equal t the larger id wins.
                         if ((p.found >> k & 1) && hit.t == p.best[k].t &&
                             primitives_[slot] < primitives_[p.best_slot[k]])
@@ -336,8 +338,8 @@ class WideReferenceBvh final : public Accelerator {
                         p.best_slot[k] = slot;
                         p.best_lane[k] = kNoLane;
                         p.found |= 1u << k;
-                        r[k].t_max = hit.t;
-                        t_box[k] = box_t_max(r[k].t_max);
+                        r.t_max = t_max[k] = hit.t;
+                        t_box[k] = box_t_max(t_max[k]);
                         t_cull[k] = t_box[k] * kFarScale;
                     }
                 }
@@ -346,11 +348,7 @@ class WideReferenceBvh final : public Accelerator {
             bool next = false;
             while (size > 0) {
                 const Entry& e = stack[--size];
-                uint32_t rays_left = 0;
-                for (uint32_t a = e.rays; a != 0; a &= a - 1) {
-                    int k = __builtin_ctz(a);
-                    if (e.t <= t_cull[k]) rays_left |= 1u << k;
-                }
+                const uint32_t rays_left = boxes.not_passed(e.t, t_cull) & e.rays;
                 if (rays_left != 0) {
                     current = e.ref;
                     active = rays_left;
@@ -492,7 +490,8 @@ class WideReferenceBvh final : public Accelerator {
     /// block and lane of each new closest hit in p.best_lane, from which
     /// finish_packet_hit takes the triangle's edges. Returns the rays whose
     /// closest hit changed.
-    uint32_t block_leaf_closest_packet(ChildRef leaf, uint32_t active, Ray* r, Packet& p) const {
+    uint32_t block_leaf_closest_packet(ChildRef leaf, uint32_t active, const Ray* rays, double* t_max,
+                                       Packet& p) const {
         uint32_t changed = 0;
 #if PT_WIDE_BVH_X86
         const uint32_t first = leaf.index & ~kBlockLeaf;
@@ -500,10 +499,10 @@ class WideReferenceBvh final : public Accelerator {
             for (uint32_t a = active; a != 0; a &= a - 1) {
                 const int k = __builtin_ctz(a);
                 alignas(32) double t[4], b1[4], b2[4];
-                unsigned m = intersect_block(blocks_[b], r[k].o, r[k].d, r[k].t_min, r[k].t_max, t, b1, b2);
+                unsigned m = intersect_block(blocks_[b], rays[k].o, rays[k].d, rays[k].t_min, t_max[k], t, b1, b2);
                 for (; m != 0; m &= m - 1) {
                     const int lane = __builtin_ctz(m);
-                    if (!(t[lane] <= r[k].t_max)) continue;
+                    if (!(t[lane] <= t_max[k])) continue;
                     const uint32_t slot = block_slot_[b] + uint32_t(lane);
                     if ((p.found >> k & 1) && t[lane] == p.best[k].t && primitives_[slot] < primitives_[p.best_slot[k]])
                         continue;
@@ -516,12 +515,12 @@ class WideReferenceBvh final : public Accelerator {
                     p.best_lane[k] = b * 4 + uint32_t(lane);
                     p.found |= 1u << k;
                     changed |= 1u << k;
-                    r[k].t_max = t[lane];
+                    t_max[k] = t[lane];
                 }
             }
         }
 #else
-        (void)leaf, (void)active, (void)r, (void)p;
+        (void)leaf, (void)active, (void)rays, (void)t_max, (void)p;
 #endif
         return changed;
     }

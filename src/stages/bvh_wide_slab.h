@@ -91,6 +91,14 @@ struct PerRayPacketSlab {
         }
         return any;
     }
+
+    /// Bit k set when t <= t_cull[k]: ray k's closest hit has not passed t.
+    static unsigned not_passed(float t, const float* t_cull) {
+        unsigned rays = 0;
+        for (int k = 0; k < kPacketSize; ++k)
+            rays |= (t <= t_cull[k] ? 1u : 0u) << k;
+        return rays;
+    }
 };
 
 #if PT_WIDE_BVH_X86
@@ -325,6 +333,11 @@ struct AvxPacketSlab {
             lane_t[c] = _mm_cvtss_f32(m);
         }
         return any;
+    }
+
+    /// Bit k set when t <= t_cull[k] (t_cull: 32-byte aligned).
+    [[gnu::target("avx2")]] static unsigned not_passed(float t, const float* t_cull) {
+        return unsigned(_mm256_movemask_ps(_mm256_cmp_ps(_mm256_set1_ps(t), _mm256_load_ps(t_cull), _CMP_LE_OQ)));
     }
 };
 
