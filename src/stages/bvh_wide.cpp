@@ -203,8 +203,13 @@ class WideReferenceBvh final : public Accelerator {
                         current = {node.child[near], node.count[near]};
                         continue;
                     }
+                    // More: the nearest (the one the sort below would leave on
+                    // top: ties to the later lane) entered, the others sorted.
+                    int n = i;
+                    for (unsigned m = mask; m != 0; m &= m - 1)
+                        if (t_enter[__builtin_ctz(m)] <= t_enter[n]) n = __builtin_ctz(m);
+                    mask = (mask | 1u << i) & ~(1u << n);
                     const int run = size;
-                    stack[size++] = {{node.child[i], node.count[i]}, t_enter[i]};
                     for (; mask != 0; mask &= mask - 1) {
                         i = __builtin_ctz(mask);
                         Entry e{{node.child[i], node.count[i]}, t_enter[i]};
@@ -213,7 +218,7 @@ class WideReferenceBvh final : public Accelerator {
                             stack[j] = stack[j - 1];
                         stack[j] = e;
                     }
-                    current = stack[--size].ref;
+                    current = {node.child[n], node.count[n]};
                     continue;
                 }
             } else if (Blocks && (current.index & kBlockLeaf)) {
