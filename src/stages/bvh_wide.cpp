@@ -308,6 +308,7 @@ class WideReferenceBvh final : public Accelerator {
                     for (; any != 0; any &= any - 1) {
                         int i = __builtin_ctz(any);
                         Entry e{{node.child[i], node.count[i]}, lane_rays[i], lane_t[i]};
+                        prefetch_child(e.ref);
                         int j = size++;
                         for (; j > run && stack[j - 1].t < e.t; --j)
                             stack[j] = stack[j - 1];
@@ -364,6 +365,25 @@ class WideReferenceBvh final : public Accelerator {
             if (!next) break;
         }
         add_counts(visited, tests);
+    }
+
+    /// Asks for a child's node or first leaf block ahead of its visit.
+    void prefetch_child(ChildRef c) const {
+#if PT_WIDE_BVH_X86
+        const char* p = nullptr;
+        size_t bytes = 0;
+        if (c.count == 0) {
+            p = reinterpret_cast<const char*>(&nodes_[c.index]);
+            bytes = sizeof(Node);
+        } else if (kBlocks && (c.index & kBlockLeaf)) {
+            p = reinterpret_cast<const char*>(&blocks_[c.index & ~kBlockLeaf]);
+            bytes = sizeof(TriangleBlock);
+        }
+        for (size_t o = 0; o < bytes; o += 64)
+            _mm_prefetch(p + o, _MM_HINT_T0);
+#else
+        (void)c;
+#endif
     }
 
     /// The packet's box test, its rays prepared (unused lanes repeat ray 0;
