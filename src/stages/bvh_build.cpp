@@ -67,6 +67,10 @@ constexpr int kMedianDepth = 48;
 // the 8-wide BVH tests such a leaf's triangles four at a time
 // (bvh_leaf_block.h), so the rays do not pay for the larger leaves (docs/bvh.md).
 constexpr size_t kForcedLeaf = 4;
+// The SAH counts a side's primitives in leaf blocks of four (rounded up),
+// as the 8-wide BVH tests them (bvh_leaf_block.h) and as Embree's builder
+// does for its four-triangle leaves: splits that fill whole blocks win.
+inline uint32_t blocks(uint32_t count) { return (count + 3) / 4; }
 
 // The build works on 4-float vectors (GCC's vector extensions: SSE on
 // x86-64, plain code elsewhere): x, y, z and an unused fourth lane. Binning
@@ -364,7 +368,7 @@ class Builder {
             for (int k = 1; k < n; ++k) {  // left: o[0 .. k), right: o[k .. n)
                 left.expand(p[o[k - 1]].lo, p[o[k - 1]].hi);
                 double cost = kTraversalCost +
-                              kIntersectionCost * (left.area() * k + right_area[k] * (n - k)) / parent_area;
+                              kIntersectionCost * (left.area() * blocks(uint32_t(k)) + right_area[k] * blocks(uint32_t(n - k))) / parent_area;
                 const bool better = cost < best_cost;  // selects, not a branch
                 best_cost = better ? cost : best_cost;
                 best_axis = better ? a : best_axis;
@@ -479,7 +483,8 @@ class Builder {
                 left.expand(bins[a][k - 1]);
                 count += counts[a][k - 1];
                 const double cost = kTraversalCost + kIntersectionCost *
-                                                         (left.area_or_zero() * count + right_area[k] * right_count[k]) /
+                                                         (left.area_or_zero() * blocks(count) +
+                                                          right_area[k] * blocks(right_count[k])) /
                                                          parent_area;
                 // A plane with an empty side splits nothing. One just past an
                 // empty bin splits as the plane before it did, at the same
