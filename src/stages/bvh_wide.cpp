@@ -14,6 +14,7 @@
 #include "stages/bvh_leaf_block.h"
 #include "stages/bvh_packet_rays.h"
 #include "stages/bvh_wide_slab.h"
+#include "stages/huge_page_allocator.h"
 
 namespace pt {
 namespace {
@@ -46,7 +47,8 @@ class WideReferenceBvh final : public Accelerator {
             for (int a = 0; a < 3; ++a)
                 float_scene_ = float_scene_ && std::fabs(root.bounds[a]) <= 1e30f &&
                                std::fabs(root.bounds[3 + a]) <= 1e30f;
-            nodes_ = collapse_to_wide<W>(bvh, &depth_);
+            const std::vector<Node> nodes = collapse_to_wide<W>(bvh, &depth_);
+            nodes_.assign(nodes.begin(), nodes.end());
             if constexpr (kBlocks) {
                 if (simd_ && primitives_.size() < kBlockLeaf) make_blocks();
             }
@@ -646,11 +648,11 @@ class WideReferenceBvh final : public Accelerator {
 
     std::vector<uint32_t> primitives_;  ///< slot -> primitive id (FlatBvh::primitives)
     Tester tester_;                     ///< holds a reference to primitives_: declared after it
-    std::vector<Node> nodes_;
+    std::vector<Node, HugePageAllocator<Node>> nodes_;
     /// Leaves of inline triangles four at a time, for the 8-wide AVX2
     /// traversal (Moller-Trumbore only); block_slot_: the slot of each block's lane 0.
     static constexpr bool kBlocks = W == 8 && PT_WIDE_BVH_X86 && std::is_same_v<Tester, InlineMollerTrumbore>;
-    std::vector<TriangleBlock> blocks_;
+    std::vector<TriangleBlock, HugePageAllocator<TriangleBlock>> blocks_;
     std::vector<uint32_t> block_slot_;
     BvhSplit split_;
     bool simd_;  ///< use the SIMD box test (else the scalar loop; same answers)
