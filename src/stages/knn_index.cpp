@@ -166,66 +166,31 @@ enum class Collected { kAnswer, kFewer, kTie, kCrowded };
     constexpr int kStackSize = 128;
     kdtree_detail::PendingCell stack[kStackSize];
     int top = 0;
-    uint32_t lo = 0, hi = uint32_t(tree.size()), heap = 1;
-    double cell_dist2 = 0, offset[3] = {0, 0, 0};
+    kdtree_detail::Cell cell = kdtree_detail::Cell::root(tree);
+    double offset[3] = {0, 0, 0};
     for (;;) {
-        while (hi - lo > kScanBelow) {
-            const uint32_t mid = lo + (hi - lo) / 2;
-            nodes.prefetch(lo, mid, hi, heap);
-            const int axis = nodes.axis(mid, heap);
-            const double delta = p[axis] - nodes.point(mid, heap)[axis];
-            kdtree_detail::PendingCell& far = stack[top++];
-            far.node = mid;
-            far.dist2 = cell_dist2 - offset[axis] * offset[axis] + delta * delta;
-            far.offset[0] = offset[0];
-            far.offset[1] = offset[1];
-            far.offset[2] = offset[2];
-            far.offset[axis] = delta;
-            if (delta <= 0) {
-                far.lo = mid + 1;
-                far.hi = hi;
-                far.heap = 2 * heap + 1;
-                hi = mid;
-                heap = 2 * heap;
-            } else {
-                far.lo = lo;
-                far.hi = mid;
-                far.heap = 2 * heap;
-                lo = mid + 1;
-                heap = 2 * heap + 1;
-            }
-        }
+        kdtree_detail::descend_to_bucket(nodes, p, cell, offset, stack, top);
         if (prefetch) {
             // The bound is fixed, so every bucket reached is scanned: listed
             // now with its lines prefetched and scanned after the traversal,
             // so that the misses on the buckets overlap.
             if (bucket_count == kMaxBuckets) return Collected::kCrowded;
-            bucket_lo[bucket_count] = lo;
-            bucket_hi[bucket_count++] = hi;
-            prefetch_bucket(points + lo);
-        } else if (!scan(lo, hi)) {
+            bucket_lo[bucket_count] = cell.lo;
+            bucket_hi[bucket_count++] = cell.hi;
+            prefetch_bucket(points + cell.lo);
+        } else if (!scan(cell.lo, cell.hi)) {
             return Collected::kCrowded;
         }
         // The bound is fixed: depth-first order, the far cells that can
         // still hold a point within it.
-        const kdtree_detail::PendingCell* next = nullptr;
-        while (top > 0 && !next) {
-            const kdtree_detail::PendingCell& pending = stack[--top];
-            if (pending.dist2 <= bound) next = &pending;
-        }
+        const kdtree_detail::PendingCell* next = kdtree_detail::pop_within(stack, top, bound);
         if (!next) break;
         if (m >= capacity) return Collected::kCrowded;
         const double d2 = (nodes.point(next->node, next->heap / 2) - p).norm2();
         dist2[m] = d2;
         at[m] = next->node;
         m += d2 <= bound;
-        lo = next->lo;
-        hi = next->hi;
-        heap = next->heap;
-        cell_dist2 = next->dist2;
-        offset[0] = next->offset[0];
-        offset[1] = next->offset[1];
-        offset[2] = next->offset[2];
+        cell = kdtree_detail::Cell::resume(*next, offset);
     }
     for (int b = 0; b < bucket_count; ++b)
         if (!scan(bucket_lo[b], bucket_hi[b])) return Collected::kCrowded;
