@@ -22,6 +22,18 @@ using namespace pt;
 
 namespace {
 
+/// The tree query and the index query at p; whether they answer alike (the
+/// same ids and distances in the same order). The answers stay in plain and indexed.
+bool queries_agree(const KdTree& tree, const KnnIndex& index, const Vec3& p, int k, double max_dist2,
+                   std::vector<Neighbor>& plain, std::vector<Neighbor>& indexed) {
+    reference::k_nearest(tree, p, k, max_dist2, plain);
+    reference::k_nearest(tree, index, p, k, max_dist2, indexed);
+    bool same = plain.size() == indexed.size();
+    for (size_t i = 0; same && i < plain.size(); ++i)
+        same = plain[i].id == indexed[i].id && plain[i].dist2 == indexed[i].dist2;
+    return same;
+}
+
 /// Queries at random points of [-1, 2]^3 and on stored points (ties), random
 /// k and maximum distance; the two queries must agree exactly and match brute force.
 void check_same_answers(const std::vector<Vec3>& points, int queries, uint64_t seed, int max_k = 60) {
@@ -37,11 +49,7 @@ void check_same_answers(const std::vector<Vec3>& points, int queries, uint64_t s
                            : points[rng.next_u32() % points.size()];
         const int k = 1 + int(rng.next_u32() % uint32_t(max_k));
         const double max_dist2 = q % 3 == 0 ? 1e300 : 0.3 * rng.next_1d();
-        reference::k_nearest(tree, p, k, max_dist2, plain);
-        reference::k_nearest(tree, index, p, k, max_dist2, indexed);
-        bool same = plain.size() == indexed.size();
-        for (size_t i = 0; same && i < plain.size(); ++i)
-            same = plain[i].id == indexed[i].id && plain[i].dist2 == indexed[i].dist2;
+        bool same = queries_agree(tree, index, p, k, max_dist2, plain, indexed);
         // Brute force's distances, nearest first.
         std::vector<double> brute;
         for (const Vec3& x : points)
@@ -182,12 +190,7 @@ TEST_CASE("knn index: a tie for the k-th place is broken as the tree query break
         const int k = closer + 1;  // one place for the two
         // The first query leaves its k-th distance; the second starts from it.
         for (int repeat = 0; repeat < 2; ++repeat) {
-            reference::k_nearest(tree, Vec3(0), k, 1e300, plain);
-            reference::k_nearest(tree, index, Vec3(0), k, 1e300, indexed);
-            bool same = plain.size() == indexed.size();
-            for (size_t i = 0; same && i < plain.size(); ++i)
-                same = plain[i].id == indexed[i].id && plain[i].dist2 == indexed[i].dist2;
-            differ += !same;
+            differ += !queries_agree(tree, index, Vec3(0), k, 1e300, plain, indexed);
             ++trials;
         }
     }
@@ -222,12 +225,7 @@ TEST_CASE("knn index: float ranks never order two distances that round alike; cr
         const KnnIndex index = build_knn_index(tree);
         for (int repeat = 0; repeat < 2; ++repeat) {  // the second from the first's guess
             for (int k : {30, 31}) {
-                reference::k_nearest(tree, Vec3(0), k, 1e300, plain);
-                reference::k_nearest(tree, index, Vec3(0), k, 1e300, indexed);
-                bool same = plain.size() == indexed.size();
-                for (size_t i = 0; same && i < plain.size(); ++i)
-                    same = plain[i].id == indexed[i].id && plain[i].dist2 == indexed[i].dist2;
-                differ += !same;
+                differ += !queries_agree(tree, index, Vec3(0), k, 1e300, plain, indexed);
                 ++trials;
             }
         }
@@ -249,12 +247,7 @@ TEST_CASE("knn index: float ranks never order two distances that round alike; cr
     for (int q = 0; q < 400; ++q) {
         const Vec3 p = q % 2 == 0 ? Vec3(0.2 + 0.6 * rng.next_1d(), 0.2 + 0.6 * rng.next_1d(), 0.5)
                                   : Vec3(2.02 + 0.06 * rng.next_1d(), 2.05, 2.02 + 0.06 * rng.next_1d());
-        reference::k_nearest(tree, p, 20, 1e300, plain);
-        reference::k_nearest(tree, index, p, 20, 1e300, indexed);
-        bool same = plain.size() == indexed.size();
-        for (size_t i = 0; same && i < plain.size(); ++i)
-            same = plain[i].id == indexed[i].id && plain[i].dist2 == indexed[i].dist2;
-        differ += !same;
+        differ += !queries_agree(tree, index, p, 20, 1e300, plain, indexed);
     }
     const KnnGuessCounts after = knn_guess_counts();
     CHECK(differ == 0);
