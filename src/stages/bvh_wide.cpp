@@ -93,7 +93,7 @@ class WideReferenceBvh final : public Accelerator {
                 hits[i] = std::nullopt;
                 continue;
             }
-            finish_packet_hit(p, i, rays[i], p.best[i]);
+            finish_hit(p.best_slot[i], p.best_lane[i], rays[i], p.best[i]);
             p.best[i].primitive = primitives_[p.best_slot[i]];
             hits[i] = p.best[i];
         }
@@ -515,7 +515,7 @@ class WideReferenceBvh final : public Accelerator {
     /// blocks in slot order, so the same answers), the blocks in the outer
     /// loop so that each is fetched once for the packet. Also notes the
     /// block and lane of each new closest hit in p.best_lane, from which
-    /// finish_packet_hit takes the triangle's edges. Returns the rays whose
+    /// finish_hit takes the triangle's edges. Returns the rays whose
     /// closest hit changed.
     uint32_t block_leaf_closest_packet(ChildRef leaf, uint32_t active, const Ray* rays, double* t_max,
                                        Packet& p) const {
@@ -552,25 +552,10 @@ class WideReferenceBvh final : public Accelerator {
         return changed;
     }
 
-    /// tester_.finish for ray k's closest hit; for a hit found in a block,
-    /// with the block's edges (the same bits as the tester's, bvh_leaf_block.h),
-    /// so that the triangle is not fetched through the scene.
-    void finish_packet_hit(const Packet& p, int k, const Ray& ray, Hit& hit) const {
-        if constexpr (kBlocks) {
-            if (p.best_lane[k] != kNoLane) {
-                const TriangleBlock& block = blocks_[p.best_lane[k] / 4];
-                const int l = int(p.best_lane[k] % 4);
-                tester_.finish_from_edges(p.best_slot[k], Vec3(block.e1[0][l], block.e1[1][l], block.e1[2][l]),
-                                          Vec3(block.e2[0][l], block.e2[1][l], block.e2[2][l]), hit);
-                return;
-            }
-        }
-        tester_.finish(p.best_slot[k], ray, hit);
-    }
-
-    /// tester_.finish for a single ray's closest hit; for a hit found in a
-    /// block (best_lane: 4 * block + lane), with the block's edges, as
-    /// finish_packet_hit, so that the triangle is not fetched through the scene.
+    /// tester_.finish for a closest hit; for a hit found in a block
+    /// (best_lane: 4 * block + lane), with the block's edges (the same bits
+    /// as the tester's, bvh_leaf_block.h), so that the triangle is not
+    /// fetched through the scene.
     void finish_hit(uint32_t slot, uint32_t best_lane, const Ray& ray, Hit& hit) const {
         if constexpr (kBlocks) {
             if (best_lane != kNoLane) {
