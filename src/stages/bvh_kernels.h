@@ -132,38 +132,48 @@ inline bool slab_test(const FlatBvhNode& node, const SlabRay& r, float t_max, fl
 // ---------------------------------------------------------------------------
 // Primitive testers
 
+/// Whether a primitive goes through the stage's routines in the inlined
+/// testers: a sphere, or a triangle whose normal the reference cannot
+/// normalise (then whether it is hit depends on its vertex normals at the
+/// hit point: reference::intersect_triangle).
+inline bool is_generic_primitive(const Scene& scene, uint32_t prim) {
+    if (scene.is_sphere(prim)) return true;
+    const TriangleRecord& r = scene.triangles[prim];
+    const Vec3 &p0 = scene.positions[r.v[0]], &p1 = scene.positions[r.v[1]], &p2 = scene.positions[r.v[2]];
+    Vec3 ng = cross(p1 - p0, p2 - p0);
+    return !(ng / ng.norm()).is_finite();
+}
+
+/// is_generic_primitive of every primitive, in primitive order (which reads
+/// the scene's arrays in sequence).
+inline std::vector<uint8_t> generic_primitives(const Scene& scene) {
+    std::vector<uint8_t> generic(scene.primitive_count(), 0);
+    for (uint32_t prim = 0; prim < generic.size(); ++prim)
+        generic[prim] = is_generic_primitive(scene, prim) ? 1 : 0;
+    return generic;
+}
+
 /// What the inlined testers share: the slot-to-primitive order, the slots
 /// that must go through the stage's routines (spheres, and triangles whose
 /// normal the reference could not normalise, which depends on the hit
 /// point), and the shading normal exactly as the reference computes it.
 class InlineTriangleSlots {
   public:
-    InlineTriangleSlots(const Scene& scene, const IntersectStage& stage, const std::vector<uint32_t>& order)
+    /// `generic_prims`: generic_primitives(scene), when the caller has it.
+    InlineTriangleSlots(const Scene& scene, const IntersectStage& stage, const std::vector<uint32_t>& order,
+                        const std::vector<uint8_t>* generic_prims = nullptr)
         : scene_(scene), stage_(stage), order_(order), generic_(order.size(), 0) {
-        // Decided in primitive order, which reads the scene's arrays in
-        // sequence (in slot order they were read at random), then given to
-        // the slots.
-        std::vector<uint8_t> generic(scene.primitive_count(), 0);
-        for (uint32_t prim = 0; prim < generic.size(); ++prim) {
-            if (scene.is_sphere(prim)) {
-                generic[prim] = 1;
-                continue;
-            }
-            const TriangleRecord& r = scene.triangles[prim];
+        // Decided in primitive order (generic_primitives), then given to the slots.
+        const std::vector<uint8_t> own = generic_prims ? std::vector<uint8_t>() : generic_primitives(scene);
+        const std::vector<uint8_t>& generic = generic_prims ? *generic_prims : own;
+        for (const TriangleRecord& r : scene.triangles)
             vertex_normals_ = vertex_normals_ || r.n[0] != kNoIndex;
-            const Vec3 &p0 = scene.positions[r.v[0]], &p1 = scene.positions[r.v[1]], &p2 = scene.positions[r.v[2]];
-            Vec3 ng = cross(p1 - p0, p2 - p0);
-            if (!(ng / ng.norm()).is_finite()) generic[prim] = 1;
-        }
         for (size_t slot = 0; slot < order.size(); ++slot)
             generic_[slot] = order[slot] < generic.size() ? generic[order[slot]] : 1;
-        for (uint8_t g : generic_)
-            any_generic_ = any_generic_ || g != 0;
     }
 
   protected:
     bool is_generic(uint32_t slot) const { return generic_[slot] != 0; }
-    bool any_generic() const { return any_generic_; }
     bool intersect_generic(uint32_t slot, const Ray& ray, Hit& hit) const {
         std::optional<Hit> h = intersect_primitive(scene_, stage_, order_[slot], ray);
         if (h) hit = *h;
@@ -190,7 +200,6 @@ class InlineTriangleSlots {
 
   private:
     std::vector<uint8_t> generic_;  ///< 1: test the slot through the stage's routines
-    bool any_generic_ = false;
     bool vertex_normals_ = false;  ///< some triangle has vertex normals
 };
 
@@ -203,12 +212,12 @@ class InlineMollerTrumbore : public InlineTriangleSlots {
     struct RayData {};  ///< Moller-Trumbore needs no per-ray setup
 
     /// `blocks`: the caller (the wide BVH) will test every inline triangle in
-    /// its leaf blocks; then, when every slot is an inline triangle, the
+    /// its leaf blocks and only generic slots through intersect(); then the
     /// per-slot copy is not made (stored() reads the scene's corners).
     InlineMollerTrumbore(const Scene& scene, const IntersectStage& stage, const std::vector<uint32_t>& order,
-                         bool blocks = false)
-        : InlineTriangleSlots(scene, stage, order) {
-        if (blocks && !any_generic()) return;
+                         bool blocks = false, const std::vector<uint8_t>* generic_prims = nullptr)
+        : InlineTriangleSlots(scene, stage, order, generic_prims) {
+        if (blocks) return;
         triangles_.resize(order.size());
         for (size_t slot = 0; slot < order.size(); ++slot) {
             if (scene.is_sphere(order[slot])) continue;

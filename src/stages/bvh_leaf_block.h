@@ -4,7 +4,7 @@
 // 8-wide BVH's AVX2 traversal).
 //
 // Why: the SAH tree then can make leaves of up to four triangles (fewer
-// nodes, a faster build: docs/bvh.md, "Build speed") without the rays
+// nodes, a faster build: docs/bvh_history.md, "Build speed") without the rays
 // paying for the extra triangle tests one at a time.
 //
 // Exactness: each lane performs exactly the reference Moller-Trumbore test

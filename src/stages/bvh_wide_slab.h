@@ -137,7 +137,7 @@ struct SseWideSlab {
 /// same fields bit for bit (tests/bvh compares the two on hard rays). The
 /// scalar constructor's branches on each direction's sign and on each
 /// origin's rounding (float_up/float_down) are unpredictable for incoherent
-/// rays and cost about a tenth of such a ray (docs/bvh.md, sixth run); here
+/// rays and cost about a tenth of such a ray (docs/bvh_history.md, seventh run); here
 /// the three axes go through one division and blends: next_float_up and
 /// next_float_down become an integer step of the float's bits (+1 or -1 by
 /// its sign, a zero first made +0 or -0, an infinity kept), chosen per lane

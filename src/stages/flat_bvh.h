@@ -27,7 +27,7 @@
 // children's triangles are counted in blocks of four, rounded up (as the
 // 8-wide BVH tests them and Embree's SAH counts its four-triangle leaves):
 // fuller leaves, fewer nodes, incoherent rays a few per cent faster
-// (docs/bvh.md, issue 17, ninth run).
+// (docs/bvh_history.md, issue 17, ninth run).
 //
 // Robustness: a node whose centroids all coincide (no split plane separates
 // them) is split in the middle of its primitive list; below depth 48 every

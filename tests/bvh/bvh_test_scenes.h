@@ -82,6 +82,36 @@ inline Scene knot_and_spheres_scene() {
     return scene;
 }
 
+/// Triangles whose normal cannot be normalised among ordinary ones, in the
+/// same leaves: the ogre's case (its degenerate triangles are tested through
+/// the stage's routine, not the leaf blocks). Around the origin, at scale
+/// 1e-70, ordinary triangles with edges of about 1e-70 and `tiny` ones with
+/// edges of about 1e-83, whose normal's squared length underflows to 0 (so
+/// n / |n| is not finite) while the ray's determinant (about 1e-166) does
+/// not; all with vertex normals, so that the reference routine reports hits
+/// on the tiny ones too. Around them, the knot. `tiny` receives their ids.
+inline Scene tiny_triangles_scene(std::vector<uint32_t>& tiny) {
+    Scene scene = empty_scene();
+    add_mesh(scene, make_torus_knot(2, 3, 1.0, 0.25, 30, 6), Transform());
+    Rng rng(11);
+    auto random_vec = [&](double scale) {
+        return scale * Vec3(rng.next_1d() * 2 - 1, rng.next_1d() * 2 - 1, rng.next_1d() * 2 - 1);
+    };
+    for (int i = 0; i < 400; ++i) {
+        const bool is_tiny = i % 5 == 0;
+        const double edge = is_tiny ? 1e-83 : 1e-70;
+        Vec3 c = random_vec(1e-69);
+        uint32_t base = uint32_t(scene.positions.size()), nbase = uint32_t(scene.normals.size());
+        scene.positions.insert(scene.positions.end(), {c + random_vec(edge), c + random_vec(edge), c + random_vec(edge)});
+        for (int k = 0; k < 3; ++k)
+            scene.normals.push_back(sample_uniform_sphere(rng.next_2d()));
+        if (is_tiny) tiny.push_back(uint32_t(scene.triangles.size()));
+        scene.triangles.push_back({{base, base + 1, base + 2}, {nbase, nbase + 1, nbase + 2}, 0});
+    }
+    scene.finalize();
+    return scene;
+}
+
 /// The Cornell box of assets/ (walls, light and two blocks).
 inline Scene cbox_scene() {
     return load_scene(std::string(PT_SOURCE_DIR) + "/assets/scenes/cbox.json");

@@ -80,6 +80,41 @@ TEST_CASE("BVH equals the linear scan: Cornell box") {
     check_scene(test::cbox_scene(), 100000);
 }
 
+TEST_CASE("BVH equals the linear scan: degenerate triangles in the leaves of ordinary ones") {
+    // The 8-wide tree tests a leaf's ordinary triangles in its blocks and
+    // its degenerate ones through the reference routine (bvh_wide.cpp,
+    // kGenericSlots). Besides the usual rays, rays that start 1e-84 from a
+    // triangle's centre and run through it (so they can hit the tiny ones).
+    std::vector<uint32_t> tiny;
+    Scene scene = test::tiny_triangles_scene(tiny);
+    std::vector<Ray> rays = test::test_rays(scene, 20000, 777);
+    Rng rng(778);
+    for (uint32_t prim = 0; prim < scene.triangles.size(); ++prim) {
+        const Triangle t = scene.triangle(prim);
+        const Vec3 c = (t.p0 + t.p1 + t.p2) / 3.0;
+        const double offset = std::binary_search(tiny.begin(), tiny.end(), prim) ? 1e-84 : 1e-69;
+        for (int k = 0; k < (c.norm() < 1e-60 ? 40 : 2); ++k) {
+            Vec3 u = sample_uniform_sphere(rng.next_2d());
+            rays.push_back(Ray(c + offset * u, -u));
+        }
+    }
+    Expected expected = linear_answers(scene, rays);
+    int tiny_hits = 0;
+    for (const std::optional<Hit>& h : expected.hits)
+        tiny_hits += h && std::binary_search(tiny.begin(), tiny.end(), h->primitive) ? 1 : 0;
+    INFO("closest hits on the tiny triangles: " << tiny_hits);
+    CHECK(tiny_hits >= 100);  // the rays reach the generic path
+    for (int width : {8, 4}) {
+        for (bool simd : {true, false}) {
+            INFO("--bvh-width " << width << (simd ? ", SIMD" : ", scalar"));
+            AcceleratorSettings settings;
+            settings.width = width;
+            settings.simd = simd;
+            check_agrees(*make_reference_bvh(scene, kReference, settings), rays, expected);
+        }
+    }
+}
+
 TEST_CASE("BVH packets of coherent camera-like rays equal the linear scan") {
     // Rays from one point outside the knot through a 96x96 grid spanning its
     // box, in rows: each packet of intersect_packet is 8 neighbouring rays,

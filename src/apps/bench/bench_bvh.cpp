@@ -104,6 +104,7 @@ struct SceneResult {
     int threads = 1;
     std::vector<KernelRow> kernels;
     double embree_build_seconds = -1;
+    uint64_t embree_bytes = 0;  ///< Embree's BVH and triangle copies (EmbreeKernel::structure_bytes)
     /// Single-thread builds of the other structures, and their memory.
     double binary_build_seconds = 0, kdtree_build_seconds = 0, grid_build_seconds = 0;
     uint64_t kdtree_bytes = 0, grid_bytes = 0;
@@ -153,6 +154,7 @@ std::vector<KernelRow> time_kernels(const Scene& full_scene, int width, int heig
     if (EmbreeKernel::available()) {
         embree = std::make_unique<EmbreeKernel>(scene);
         *embree_build_seconds = embree->build_seconds();
+        result.embree_bytes = embree->structure_bytes();
     }
     RaySets sets = make_ray_sets(scene, *bvh, width, height);
     std::vector<KernelRow> rows;
@@ -363,7 +365,11 @@ void print_tables(const std::vector<SceneResult>& results, int width, int height
     std::cout << "\n### Builds (1 thread; M tri/s = million triangles per second) and memory\n\n";
     std::vector<std::string> build_header = {"scene", "triangles", "BVH Mtri/s", "BVH2 Mtri/s",
                                              "kd-tree Mtri/s", "grid Mtri/s", "kd-tree B/tri", "grid B/tri"};
-    if (embree) build_header.push_back("Embree Mtri/s");
+    if (embree) {
+        build_header.push_back("Embree Mtri/s");
+        build_header.push_back("BVH B/tri");
+        build_header.push_back("Embree B/tri");
+    }
     Table b(build_header, 2);
     auto rate = [](uint64_t n, double s) { return s > 0 ? fixed(double(n) / s * 1e-6, 2) : std::string("-"); };
     for (const SceneResult& r : results) {
@@ -377,7 +383,11 @@ void print_tables(const std::vector<SceneResult>& results, int width, int height
                                           rate(r.triangles, r.grid_build_seconds),
                                           fixed(double(r.kdtree_bytes) / n, 1),
                                           fixed(double(r.grid_bytes) / n, 1)};
-        if (embree) cells.push_back(rate(r.triangles, r.embree_build_seconds));
+        if (embree) {
+            cells.push_back(rate(r.triangles, r.embree_build_seconds));
+            cells.push_back(fixed(double(r.info.bytes) / n, 1));
+            cells.push_back(fixed(double(r.embree_bytes) / n, 1));
+        }
         b.add(cells);
     }
     std::cout << b.markdown();
@@ -414,7 +424,10 @@ void write_json(const std::string& path, const std::vector<SceneResult>& results
             s["threads"] = r.threads;
             s["threaded_mrays_per_second"] = mrays(r.threaded.counters, r.threaded.seconds);
         }
-        if (r.embree_build_seconds >= 0) s["embree_build_seconds"] = r.embree_build_seconds;
+        if (r.embree_build_seconds >= 0) {
+            s["embree_build_seconds"] = r.embree_build_seconds;
+            s["embree_bytes"] = r.embree_bytes;
+        }
         if (!r.kernels.empty()) {
             s["binary_build_seconds"] = r.binary_build_seconds;
             s["kdtree_build_seconds"] = r.kdtree_build_seconds;

@@ -33,12 +33,21 @@ RTCRayHit to_embree(const Ray& r) {
     return rh;
 }
 
+/// Embree's memory monitor: called with +bytes before each allocation and
+/// -bytes after each release, `user` the running sum (one thread builds).
+bool count_device_bytes(void* user, ssize_t bytes, bool) {
+    *static_cast<int64_t*>(user) += int64_t(bytes);
+    return true;
+}
+
 }  // namespace
 
 struct EmbreeKernel::Impl {
     RTCDevice device = nullptr;
     RTCScene scene = nullptr;
     double build_seconds = 0;
+    int64_t live_bytes = 0;       ///< what the device holds now (its memory monitor's running sum)
+    int64_t structure_bytes = 0;  ///< held after the commit beyond what the buffers took before it
 };
 
 bool EmbreeKernel::available() {
@@ -53,6 +62,7 @@ std::string EmbreeKernel::version() {
 EmbreeKernel::EmbreeKernel(const Scene& scene) : impl_(std::make_unique<Impl>()) {
     impl_->device = rtcNewDevice("threads=1,set_affinity=0");
     if (!impl_->device) throw std::runtime_error("Embree: rtcNewDevice failed");
+    rtcSetDeviceMemoryMonitorFunction(impl_->device, count_device_bytes, &impl_->live_bytes);
     // The first commit in a process starts Embree's task system: do it
     // outside the timed build.
     static bool warmed_up = false;
@@ -91,8 +101,10 @@ EmbreeKernel::EmbreeKernel(const Scene& scene) : impl_(std::make_unique<Impl>())
     rtcCommitGeometry(geometry);
     rtcAttachGeometry(impl_->scene, geometry);
     rtcReleaseGeometry(geometry);
+    const int64_t before_commit = impl_->live_bytes;  // the vertex and index buffers
     rtcCommitScene(impl_->scene);
     impl_->build_seconds = timer.seconds();
+    impl_->structure_bytes = impl_->live_bytes - before_commit;
 }
 
 EmbreeKernel::~EmbreeKernel() {
@@ -102,6 +114,10 @@ EmbreeKernel::~EmbreeKernel() {
 
 double EmbreeKernel::build_seconds() const {
     return impl_->build_seconds;
+}
+
+uint64_t EmbreeKernel::structure_bytes() const {
+    return uint64_t(std::max<int64_t>(0, impl_->structure_bytes));
 }
 
 KernelPass EmbreeKernel::trace(const std::vector<Ray>& rays, bool any_hit) const {
@@ -160,6 +176,9 @@ EmbreeKernel::EmbreeKernel(const Scene&) {
 }
 EmbreeKernel::~EmbreeKernel() = default;
 double EmbreeKernel::build_seconds() const {
+    return 0;
+}
+uint64_t EmbreeKernel::structure_bytes() const {
     return 0;
 }
 KernelPass EmbreeKernel::trace(const std::vector<Ray>&, bool) const {

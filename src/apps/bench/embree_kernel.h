@@ -39,6 +39,10 @@ class EmbreeKernel {
 
     /// Seconds from handing over the vertices to the committed scene.
     double build_seconds() const;
+    /// Bytes that Embree holds after the build beyond its vertex and index
+    /// buffers (its BVH and its own triangle copies), from the device's
+    /// memory monitor: the figure to set beside the reference BVH's.
+    uint64_t structure_bytes() const;
     /// Traces every ray once (rtcIntersect1, or rtcOccluded1 when any_hit);
     /// only seconds and hits are filled in.
     KernelPass trace(const std::vector<Ray>& rays, bool any_hit) const;
