@@ -4,6 +4,7 @@
 #include <immintrin.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 
@@ -22,14 +23,63 @@ int inner_depth(size_t lo, size_t hi) {
     return 1 + inner_depth(lo, mid);
 }
 
-void copy_nodes(const KdTree& tree, KnnIndex& index, size_t lo, size_t hi, uint32_t h) {
-    if (hi - lo <= kScanBelow) return;
+/// The depths of the shallowest and the deepest bucket below a range of n
+/// points (the right range is never larger than the left one, so the
+/// shallowest lies on the rightmost path and the deepest on the leftmost).
+int bucket_depth(size_t n, bool deepest) {
+    int depth = 0;
+    for (; n > kScanBelow; ++depth) n = deepest ? n / 2 : n - n / 2 - 1;
+    return depth;
+}
+
+/// The largest coordinate the quantised filter accepts (of a point, of a
+/// query): squared distances stay far inside float's range.
+constexpr double kFilterRange = 1e18;
+
+/// Quantises the bucket [lo, hi) into `bucket` (see KnnBucket); false when
+/// a coordinate is out of the filter's range or a point is not within
+/// 0.75 steps of its code on each axis (then the index holds no buckets).
+bool quantise_bucket(const KdTree& tree, size_t lo, size_t hi, KnnBucket& bucket) {
+    double low[3], high[3];
+    for (int a = 0; a < 3; ++a) low[a] = high[a] = tree.points[lo][a];
+    for (size_t i = lo; i < hi; ++i)
+        for (int a = 0; a < 3; ++a) {
+            const double x = tree.points[i][a];
+            if (!(std::fabs(x) <= kFilterRange)) return false;
+            low[a] = std::min(low[a], x);
+            high[a] = std::max(high[a], x);
+        }
+    double extent = 0;
+    for (int a = 0; a < 3; ++a) {
+        float origin = float(low[a]);
+        if (double(origin) > low[a]) origin = std::nextafter(origin, -std::numeric_limits<float>::infinity());
+        bucket.origin[a] = origin;
+        extent = std::max(extent, high[a] - double(origin));
+    }
+    float step = float(extent / 255);
+    if (double(step) < extent / 255) step = std::nextafter(step, std::numeric_limits<float>::infinity());
+    bucket.step = step;
+    for (size_t i = lo; i < hi; ++i)
+        for (int a = 0; a < 3; ++a) {
+            const double offset = tree.points[i][a] - double(bucket.origin[a]);
+            const double code = step > 0 ? std::clamp(std::nearbyint(offset / double(step)), 0.0, 255.0) : 0.0;
+            bucket.code[a][i - lo] = uint8_t(code);
+            if (!(std::fabs(offset - code * double(step)) <= 0.75 * double(step))) return false;
+        }
+    return true;
+}
+
+void copy_nodes(const KdTree& tree, KnnIndex& index, size_t lo, size_t hi, uint32_t h, bool& quantised) {
+    if (hi - lo <= kScanBelow) {
+        if (quantised) quantised = quantise_bucket(tree, lo, hi, index.buckets[h - index.first_bucket]);
+        return;
+    }
     const size_t mid = lo + (hi - lo) / 2;
     KnnNode& node = index.pairs[h / 2].node[h % 2];
     node.point = tree.points[mid];
     node.axis = tree.axis[mid];
-    copy_nodes(tree, index, lo, mid, 2 * h);
-    copy_nodes(tree, index, mid + 1, hi, 2 * h + 1);
+    copy_nodes(tree, index, lo, mid, 2 * h, quantised);
+    copy_nodes(tree, index, mid + 1, hi, 2 * h + 1, quantised);
 }
 
 /// The search reads inner nodes from the index: node h, and while it is
@@ -107,6 +157,44 @@ inline void prefetch_bucket(const Vec3* first) {
     __builtin_prefetch(line + 383);
 }
 
+/// knn_bucket_candidates (knn_index.h), eight points per AVX2 operation.
+/// Per axis, with c = origin - p (a double rounded to float) and the point's
+/// offset d' = code * step + c in float, the exact offset d = x - p obeys
+///     |d| >= |d'| - e,   e = step + 2^-21 |c|
+/// (half a step from the rounding to a code, the other half spare; the
+/// roundings of c, of code * step and of the sum are each at most 2^-24
+/// of a value below |c| + 255 step, Higham, "Accuracy and Stability of
+/// Numerical Algorithms", 2002, section 2.2). The lower bound
+/// sum max(0, |d'| - e)^2 computed in float is then at most (1 + 2^-21)
+/// times the exact squared distance (7 roundings, plus tiny absolute terms
+/// for subnormals), so a point whose bound exceeds the bound grown by
+/// 2^-19 (plus 2^-120) is farther than `bound` and is dropped; NaN keeps it.
+[[gnu::target("avx2")]] inline uint32_t bucket_candidates(const KnnBucket& bucket, uint32_t n,
+                                                                              const Vec3& p, double bound) {
+    const double step = bucket.step;
+    // (1 + 2^-22): a value rounded to float is not below the double it came from.
+    const __m256 limit = _mm256_set1_ps(float((bound * (1 + 0x1p-19) + 0x1p-120) * (1 + 0x1p-22)));
+    const __m256 sign = _mm256_set1_ps(-0.0f), zero = _mm256_setzero_ps(), fstep = _mm256_set1_ps(bucket.step);
+    __m256 c[3], e[3];
+    for (int a = 0; a < 3; ++a) {
+        const double ca = double(bucket.origin[a]) - p[a];
+        c[a] = _mm256_set1_ps(float(ca));
+        e[a] = _mm256_set1_ps(float((step + 0x1p-21 * std::fabs(ca) + 0x1p-100) * (1 + 0x1p-22)));
+    }
+    uint32_t mask = 0;
+    for (int half = 0; half < 2; ++half) {
+        __m256 sum = zero;
+        for (int a = 0; a < 3; ++a) {
+            const __m128i codes = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(bucket.code[a] + 8 * half));
+            const __m256 d = _mm256_add_ps(_mm256_mul_ps(_mm256_cvtepi32_ps(_mm256_cvtepu8_epi32(codes)), fstep), c[a]);
+            const __m256 low = _mm256_max_ps(_mm256_sub_ps(_mm256_andnot_ps(sign, d), e[a]), zero);
+            sum = _mm256_add_ps(sum, _mm256_mul_ps(low, low));
+        }
+        mask |= uint32_t(_mm256_movemask_ps(_mm256_cmp_ps(sum, limit, _CMP_NGT_UQ))) << (8 * half);
+    }
+    return mask & ((1u << n) - 1);
+}
+
 /// The query from a guessed bound, when the processor has AVX2: every point
 /// within `bound` collected unsorted (exact double distances, appended
 /// without a branch), then each one's rank (how many are nearer) counted
@@ -132,15 +220,17 @@ inline void prefetch_bucket(const Vec3* first) {
 /// slower for coherent queries, which therefore scan as they go).
 enum class Collected { kAnswer, kFewer, kTie, kCrowded };
 [[gnu::target("avx2")]] Collected collect_search(const KdTree& tree, const IndexNodes& nodes, const Vec3& p, size_t k,
-                                                 double bound, bool prefetch, double* best, uint32_t* best_at) {
+                                                 double bound, bool prefetch, const KnnIndex* quantised, double* best,
+                                                 uint32_t* best_at) {
     const size_t capacity = 2 * k + 16;
+    constexpr int kMaxBuckets = 64;
     thread_local std::vector<double> dist2_storage;
     thread_local std::vector<uint32_t> at_storage, order_storage;
     thread_local std::vector<float> key_storage;
-    if (at_storage.size() < capacity + kScanBelow) {
-        dist2_storage.resize(capacity + kScanBelow);
-        at_storage.resize(capacity + kScanBelow);
-        order_storage.resize(capacity + kScanBelow);
+    if (at_storage.size() < capacity + kScanBelow * (kMaxBuckets + 1)) {
+        dist2_storage.resize(capacity + kScanBelow * (kMaxBuckets + 1));
+        at_storage.resize(capacity + kScanBelow * (kMaxBuckets + 1));
+        order_storage.resize(capacity + kScanBelow * (kMaxBuckets + 1));
         key_storage.resize(capacity + kScanBelow + 8);
     }
     double* dist2 = dist2_storage.data();
@@ -160,8 +250,7 @@ enum class Collected { kAnswer, kFewer, kTie, kCrowded };
         }
         return true;
     };
-    constexpr int kMaxBuckets = 64;
-    uint32_t bucket_lo[kMaxBuckets], bucket_hi[kMaxBuckets];
+    uint32_t bucket_lo[kMaxBuckets], bucket_hi[kMaxBuckets], bucket_heap[kMaxBuckets];
     int bucket_count = 0;
     constexpr int kStackSize = 128;
     kdtree_detail::PendingCell stack[kStackSize];
@@ -176,8 +265,10 @@ enum class Collected { kAnswer, kFewer, kTie, kCrowded };
             // so that the misses on the buckets overlap.
             if (bucket_count == kMaxBuckets) return Collected::kCrowded;
             bucket_lo[bucket_count] = cell.lo;
-            bucket_hi[bucket_count++] = cell.hi;
-            prefetch_bucket(points + cell.lo);
+            bucket_hi[bucket_count] = cell.hi;
+            bucket_heap[bucket_count++] = cell.heap;
+            if (quantised) __builtin_prefetch(&quantised->buckets[cell.heap - quantised->first_bucket]);
+            else prefetch_bucket(points + cell.lo);
         } else if (!scan(cell.lo, cell.hi)) {
             return Collected::kCrowded;
         }
@@ -192,8 +283,37 @@ enum class Collected { kAnswer, kFewer, kTie, kCrowded };
         m += d2 <= bound;
         cell = kdtree_detail::Cell::resume(*next, offset);
     }
-    for (int b = 0; b < bucket_count; ++b)
-        if (!scan(bucket_lo[b], bucket_hi[b])) return Collected::kCrowded;
+    if (quantised) {
+        // The quantised buckets name the points that may lie within the
+        // bound (a few more than do); only those are read from the tree,
+        // their lines prefetched first, and kept by their exact distance:
+        // the same points as the scan of whole buckets keeps.
+        uint32_t* candidate = order_storage.data();
+        size_t candidates = 0;
+        for (int b = 0; b < bucket_count; ++b) {
+            const uint32_t lo = bucket_lo[b], n = bucket_hi[b] - lo;
+            const uint32_t mask =
+                bucket_candidates(quantised->buckets[bucket_heap[b] - quantised->first_bucket], n, p, bound);
+            for (uint32_t j = 0; j < n; ++j) {
+                candidate[candidates] = lo + j;
+                candidates += (mask >> j) & 1;
+            }
+        }
+        for (size_t i = 0; i < candidates; ++i) {
+            __builtin_prefetch(points + candidate[i]);
+            __builtin_prefetch(reinterpret_cast<const char*>(points + candidate[i]) + sizeof(Vec3) - 1);
+        }
+        for (size_t i = 0; i < candidates; ++i) {
+            const double d2 = (points[candidate[i]] - p).norm2();
+            dist2[m] = d2;
+            at[m] = candidate[i];
+            m += d2 <= bound;
+        }
+        if (m > capacity) return Collected::kCrowded;
+    } else {
+        for (int b = 0; b < bucket_count; ++b)
+            if (!scan(bucket_lo[b], bucket_hi[b])) return Collected::kCrowded;
+    }
     if (m < k) return Collected::kFewer;
     // Ranks on float keys, padded with infinity to whole vectors.
     float* key = key_storage.data();
@@ -227,12 +347,29 @@ enum class Collected { kAnswer, kFewer, kTie, kCrowded };
 KnnIndex build_knn_index(const KdTree& tree) {
     KnnIndex index;
     index.tree_size = tree.size();
+    if (tree.empty()) return index;
+    // Buckets are numbered 2^shallowest .. 2^(deepest + 1) - 1.
+    index.first_bucket = uint32_t(1) << bucket_depth(tree.size(), false);
+    index.buckets.resize((size_t(1) << (bucket_depth(tree.size(), true) + 1)) - index.first_bucket);
     const int depth = inner_depth(0, tree.size());
-    if (depth < 0) return index;
     // Numbers 1 .. 2^(depth + 1) - 1: pairs 0 .. 2^depth - 1.
-    index.pairs.resize(size_t(1) << depth);
-    copy_nodes(tree, index, 0, tree.size(), 1);
+    if (depth >= 0) index.pairs.resize(size_t(1) << depth);
+    bool quantised = true;
+    copy_nodes(tree, index, 0, tree.size(), 1, quantised);
+    if (!quantised) {
+        index.buckets.clear();
+        index.buckets.shrink_to_fit();
+    }
     return index;
+}
+
+bool knn_bucket_filter_applies(const Vec3& p, double bound) {
+    return std::fabs(p.x) <= kFilterRange && std::fabs(p.y) <= kFilterRange && std::fabs(p.z) <= kFilterRange &&
+           bound >= 0 && bound <= kFilterRange * kFilterRange;
+}
+
+uint32_t knn_bucket_candidates(const KnnBucket& bucket, uint32_t n, const Vec3& p, double bound) {
+    return bucket_candidates(bucket, n, p, bound);
 }
 
 KnnGuessCounts knn_guess_counts() { return guess_counts; }
@@ -262,7 +399,11 @@ void k_nearest(const KdTree& tree, const KnnIndex& index, const Vec3& p, int k, 
     const bool coherent = (p - memory.last_p).norm2() <= kCoherent2 * memory.kth_dist2[0];
     memory.last_p = p;
     const Collected collected = guess < max_dist2 && avx2
-                                    ? collect_search(tree, nodes, p, kept, guess, !coherent, best, at)
+                                    ? collect_search(tree, nodes, p, kept, guess, !coherent,
+                                                     !index.buckets.empty() && knn_bucket_filter_applies(p, guess)
+                                                         ? &index
+                                                         : nullptr,
+                                                     best, at)
                                     : Collected::kCrowded;
     if (collected == Collected::kAnswer) {
         answered = true;

@@ -296,3 +296,113 @@ TEST_CASE("knn index: each inner node's record is the tree's node point and axis
     CHECK(inner == 63);  // 777 points: inner levels 0 to 5 are complete (2^6 - 1 nodes)
     CHECK(equal == inner);
 }
+
+namespace {
+
+/// Every bucket of `tree` (a range of at most 16 points) with its breadth-first number.
+struct BucketRange {
+    size_t lo, hi;
+    uint32_t h;
+};
+std::vector<BucketRange> tree_buckets(const KdTree& tree) {
+    std::vector<BucketRange> buckets, todo = {{0, tree.size(), 1}};
+    while (!todo.empty()) {
+        const BucketRange r = todo.back();
+        todo.pop_back();
+        if (r.hi - r.lo <= 16) {
+            buckets.push_back(r);
+            continue;
+        }
+        const size_t mid = r.lo + (r.hi - r.lo) / 2;
+        todo.push_back({r.lo, mid, 2 * r.h});
+        todo.push_back({mid + 1, r.hi, 2 * r.h + 1});
+    }
+    return buckets;
+}
+
+/// The quantised filter on every bucket of the tree over `points`, for
+/// queries near the buckets and on their points, with each point's exact
+/// squared distance as the bound (the hardest case: a point exactly at the
+/// bound must be kept): returns how many points within the bound it
+/// dropped (must be none), and adds to `dropped_far` / `far` how many
+/// points beyond twice the bound it dropped / saw.
+int filter_misses(const std::vector<Vec3>& points, uint64_t seed, int& dropped_far, int& far) {
+    const KdTree tree = reference::build_kdtree(points);
+    const KnnIndex index = build_knn_index(tree);
+    REQUIRE(!index.buckets.empty());
+    Rng rng(seed);
+    int misses = 0;
+    for (const BucketRange& b : tree_buckets(tree)) {
+        const KnnBucket& bucket = index.buckets[b.h - index.first_bucket];
+        const uint32_t n = uint32_t(b.hi - b.lo);
+        for (int q = 0; q < 6; ++q) {
+            // On a stored point, or near one (within about the bucket's extent).
+            const Vec3 at = tree.points[b.lo + rng.next_u32() % n];
+            const Vec3 spread = tree.points[b.lo] - tree.points[b.hi - 1];
+            const Vec3 p = q < 2 ? at
+                                 : at + Vec3((rng.next_1d() - 0.5) * spread.x, (rng.next_1d() - 0.5) * spread.y,
+                                             (rng.next_1d() - 0.5) * spread.z);
+            for (uint32_t j = 0; j < n; ++j) {
+                const double bound = (tree.points[b.lo + j] - p).norm2();
+                if (!knn_bucket_filter_applies(p, bound)) continue;
+                const uint32_t mask = knn_bucket_candidates(bucket, n, p, bound);
+                for (uint32_t i = 0; i < n; ++i) {
+                    const double d2 = (tree.points[b.lo + i] - p).norm2();
+                    const bool kept = (mask >> i) & 1;
+                    misses += d2 <= bound && !kept;
+                    if (d2 > 2 * bound) {
+                        ++far;
+                        dropped_far += !kept;
+                    }
+                }
+            }
+        }
+    }
+    return misses;
+}
+
+}  // namespace
+
+// The quantised buckets (stages/knn_index.h) only filter: a point within
+// the bound must never be dropped, whatever the rounding (coordinates far
+// from the origin with tiny spreads, duplicates, a plane, one outlier that
+// makes a bucket's step coarse); and the filter must drop most points
+// beyond twice the bound on random points (else it saves nothing).
+TEST_CASE("knn index: the quantised buckets never drop a point within the bound") {
+    if (!__builtin_cpu_supports("avx2")) return;  // the filter is used with AVX2 only
+    Rng rng(41);
+    int dropped_far = 0, far = 0;
+    std::vector<Vec3> random(3000);
+    for (Vec3& p : random) p = {rng.next_1d(), rng.next_1d(), rng.next_1d()};
+    CHECK(filter_misses(random, 1, dropped_far, far) == 0);
+    // At least 90% of the points beyond twice the bound are dropped.
+    CHECK(dropped_far >= 0.9 * far);
+    CHECK(far > 10000);
+
+    std::vector<Vec3> offset(2000);  // 1000 + 10^-9 spreads: float cannot hold the points
+    for (Vec3& p : offset) p = {1000 + 1e-9 * rng.next_1d(), -1000 + 1e-9 * rng.next_1d(), 1e-9 * rng.next_1d()};
+    std::vector<Vec3> duplicates(400, Vec3(0.3, 0.6, 0.9));
+    for (int i = 0; i < 40; ++i) duplicates.push_back({rng.next_1d(), rng.next_1d(), rng.next_1d()});
+    std::vector<Vec3> plane(2000);
+    for (Vec3& p : plane) p = {rng.next_1d(), 0.1, rng.next_1d()};
+    std::vector<Vec3> outliers(2000);
+    for (size_t i = 0; i < outliers.size(); ++i)
+        outliers[i] = i % 16 == 0 ? Vec3(1e6 * rng.next_1d(), 0, 0) : Vec3(1e-3 * rng.next_1d(), 1e-3 * rng.next_1d(), 0);
+    std::vector<Vec3> large(2000);  // near the filter's range (10^18)
+    for (Vec3& p : large) p = {1e17 * rng.next_1d(), -1e17 * rng.next_1d(), 1e17 + 1e7 * rng.next_1d()};
+    int unused = 0;
+    for (const auto* points : {&offset, &duplicates, &plane, &outliers, &large})
+        CHECK(filter_misses(*points, 2, unused, unused) == 0);
+
+    // Whole queries through the filter agree with the tree query there too.
+    check_same_answers(offset, 200, 8);
+    check_same_answers(outliers, 200, 9);
+    CHECK(walk_differences(offset, 300, 20, 1e-10, 10) == 0);
+    CHECK(walk_differences(random, 300, 50, 0.5, 11) == 0);
+
+    // Out of the filter's range: no buckets, the queries still agree.
+    std::vector<Vec3> huge = random;
+    huge[7] = {1e20, 0, 0};
+    CHECK(build_knn_index(reference::build_kdtree(huge)).buckets.empty());
+    check_same_answers(huge, 100, 12);
+}
