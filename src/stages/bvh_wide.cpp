@@ -31,6 +31,61 @@ struct ChildRef {
 /// (bvh_leaf_block.h) and the rest is the index of its first block.
 constexpr uint32_t kBlockLeaf = 0x80000000u;
 
+// Leaves of two blocks: the binary SAH tree's leaves hold at most four
+// triangles (--max-leaf, default 4), one leaf block; where the SAH prefers
+// it, the 8-wide tree takes a binary subtree of up to eight triangles as one
+// leaf of two blocks. The test is the build's SAH with both sides counted in
+// blocks (bvh_build.cpp): a leaf costs blocks(n) triangle tests, the split
+// C_trav + (A_L blocks(n_L) + A_R blocks(n_R)) / A with C_trav = 1. This is
+// what the SAH itself decides with leaves of up to eight priced in blocks,
+// as Embree's builder prices its leaves, while the binary tree (`--bvh-width
+// 2`, 4-wide, the student's) keeps its leaves of four. Fewer nodes (ogre
+// 10,294 to 7,136) and lanes, more triangles tested per ray (9.5 to 13.7,
+// diffuse), four at a time (docs/bvh_history.md, issue 17, tenth run).
+constexpr uint32_t kMergedLeaf = 8;
+constexpr double kMergeTraversalCost = 1.0;
+
+/// Turns each binary subtree of at most kMergedLeaf primitives that the
+/// block SAH above prefers as one leaf into that leaf (its primitives are
+/// contiguous: depth-first order). Its descendants stay in `nodes`,
+/// unreachable.
+void merge_small_subtrees(FlatBvh& bvh) {
+    const size_t n = bvh.nodes.size();
+    std::vector<uint32_t> count(n), first(n);
+    for (size_t i = n; i-- > 0;) {  // children follow their parent
+        const FlatBvhNode& node = bvh.nodes[i];
+        count[i] = node.is_leaf() ? node.count : count[i + 1] + count[node.offset];
+        first[i] = node.is_leaf() ? node.offset : first[i + 1];
+    }
+    auto area = [](const FlatBvhNode& b) {
+        double x = double(b.bounds[3]) - b.bounds[0], y = double(b.bounds[4]) - b.bounds[1],
+               z = double(b.bounds[5]) - b.bounds[2];
+        return x * y + y * z + z * x;
+    };
+    auto blocks = [](uint32_t c) { return double((c + 3) / 4); };
+    std::vector<uint32_t> stack{0};
+    while (!stack.empty()) {
+        const uint32_t i = stack.back();
+        stack.pop_back();
+        FlatBvhNode& node = bvh.nodes[i];
+        if (node.is_leaf()) continue;
+        const uint32_t left = i + 1, right = node.offset;
+        if (count[i] <= kMergedLeaf) {
+            const double a = area(node);
+            const double split = kMergeTraversalCost + (area(bvh.nodes[left]) * blocks(count[left]) +
+                                                        area(bvh.nodes[right]) * blocks(count[right])) / a;
+            if (!(a > 0) || blocks(count[i]) <= split) {
+                node.count = uint16_t(count[i]);
+                node.offset = first[i];
+                node.axis = 0;
+                continue;
+            }
+        }
+        stack.push_back(right);
+        stack.push_back(left);
+    }
+}
+
 template <class Tester, int W>
 class WideReferenceBvh final : public Accelerator {
   public:
@@ -38,7 +93,7 @@ class WideReferenceBvh final : public Accelerator {
 
     WideReferenceBvh(const Scene& scene, const IntersectStage& stage, FlatBvh bvh, bool simd)
         : generic_prims_(uses_blocks(bvh, simd) ? generic_primitives(scene) : std::vector<uint8_t>()),
-          primitives_(leaf_order(bvh, generic_prims_)),
+          primitives_(leaf_order(bvh, generic_prims_, uses_blocks(bvh, simd))),
           tester_(make_tester(scene, stage, primitives_, uses_blocks(bvh, simd), generic_prims_)),
           split_(bvh.split), simd_(simd && PT_WIDE_BVH_X86 && (W == 4 || wide_bvh_has_avx())) {
         if (!bvh.nodes.empty()) {
@@ -599,9 +654,14 @@ class WideReferenceBvh final : public Accelerator {
     /// that make_blocks can split them off. The closest hit does not depend
     /// on the order of a leaf's slots (the smallest t, then the largest id,
     /// as the linear scan's).
-    static std::vector<uint32_t> leaf_order(FlatBvh& bvh, const std::vector<uint8_t>& generic) {
+    /// With blocks, merges the small subtrees first (merge_small_subtrees).
+    static std::vector<uint32_t> leaf_order(FlatBvh& bvh, const std::vector<uint8_t>& generic, bool blocks) {
+        if (blocks) merge_small_subtrees(bvh);
         if (std::find(generic.begin(), generic.end(), 1) != generic.end()) {
-            for (const FlatBvhNode& n : bvh.nodes) {
+            // Last to first, so that a merged leaf is ordered after the
+            // unreachable leaves inside it.
+            for (size_t i = bvh.nodes.size(); i-- > 0;) {
+                const FlatBvhNode& n = bvh.nodes[i];
                 if (!n.is_leaf()) continue;
                 auto first = bvh.primitives.begin() + n.offset;
                 std::stable_partition(first, first + n.count, [&](uint32_t prim) { return generic[prim] == 0; });
