@@ -50,13 +50,13 @@ struct Cell {
     }
 };
 
-/// Descends from `cell` to the bucket that holds p (at most kScanBelow
-/// points), pushing the far child of every node it passes onto the stack.
-/// `Nodes` as in knn_search below.
-template <class Nodes>
+/// Descends from `cell` to the bucket that holds p (at most kStop points;
+/// a bucket unless a caller stops higher), pushing the far child of every
+/// node it passes onto the stack. `Nodes` as in knn_search below.
+template <uint32_t kStop = kScanBelow, class Nodes>
 [[gnu::always_inline]] inline void descend_to_bucket(const Nodes& nodes, const Vec3& p, Cell& cell, double offset[3],
                                                      PendingCell* stack, int& top) {
-    while (cell.hi - cell.lo > kScanBelow) {
+    while (cell.hi - cell.lo > kStop) {
         const uint32_t mid = cell.lo + (cell.hi - cell.lo) / 2;
         nodes.prefetch(cell.lo, mid, cell.hi, cell.heap);
         const int axis = nodes.axis(mid, cell.heap);

@@ -23,12 +23,12 @@ int inner_depth(size_t lo, size_t hi) {
     return 1 + inner_depth(lo, mid);
 }
 
-/// The depths of the shallowest and the deepest bucket below a range of n
+/// The depths of the shallowest and the deepest group below a range of n
 /// points (the right range is never larger than the left one, so the
 /// shallowest lies on the rightmost path and the deepest on the leftmost).
-int bucket_depth(size_t n, bool deepest) {
+int group_depth(size_t n, bool deepest) {
     int depth = 0;
-    for (; n > kScanBelow; ++depth) n = deepest ? n / 2 : n - n / 2 - 1;
+    for (; n > kKnnGroupBelow; ++depth) n = deepest ? n / 2 : n - n / 2 - 1;
     return depth;
 }
 
@@ -36,10 +36,10 @@ int bucket_depth(size_t n, bool deepest) {
 /// query): squared distances stay far inside float's range.
 constexpr double kFilterRange = 1e18;
 
-/// Quantises the bucket [lo, hi) into `bucket` (see KnnBucket); false when
+/// Quantises the group [lo, hi) into `bucket` (see KnnGroup); false when
 /// a coordinate is out of the filter's range or a point is not within
-/// 0.75 steps of its code on each axis (then the index holds no buckets).
-bool quantise_bucket(const KdTree& tree, size_t lo, size_t hi, KnnBucket& bucket) {
+/// 0.75 steps of its code on each axis (then the index holds no groups).
+bool quantise_group(const KdTree& tree, size_t lo, size_t hi, KnnGroup& bucket) {
     double low[3], high[3];
     for (int a = 0; a < 3; ++a) low[a] = high[a] = tree.points[lo][a];
     for (size_t i = lo; i < hi; ++i)
@@ -69,17 +69,18 @@ bool quantise_bucket(const KdTree& tree, size_t lo, size_t hi, KnnBucket& bucket
     return true;
 }
 
-void copy_nodes(const KdTree& tree, KnnIndex& index, size_t lo, size_t hi, uint32_t h, bool& quantised) {
-    if (hi - lo <= kScanBelow) {
-        if (quantised) quantised = quantise_bucket(tree, lo, hi, index.buckets[h - index.first_bucket]);
-        return;
+void copy_nodes(const KdTree& tree, KnnIndex& index, size_t lo, size_t hi, uint32_t h, bool in_group, bool& quantised) {
+    if (!in_group && hi - lo <= kKnnGroupBelow) {
+        if (quantised) quantised = quantise_group(tree, lo, hi, index.groups[h - index.first_group]);
+        in_group = true;
     }
+    if (hi - lo <= kScanBelow) return;
     const size_t mid = lo + (hi - lo) / 2;
     KnnNode& node = index.pairs[h / 2].node[h % 2];
     node.point = tree.points[mid];
     node.axis = tree.axis[mid];
-    copy_nodes(tree, index, lo, mid, 2 * h, quantised);
-    copy_nodes(tree, index, mid + 1, hi, 2 * h + 1, quantised);
+    copy_nodes(tree, index, lo, mid, 2 * h, in_group, quantised);
+    copy_nodes(tree, index, mid + 1, hi, 2 * h + 1, in_group, quantised);
 }
 
 /// The search reads inner nodes from the index: node h, and while it is
@@ -157,7 +158,7 @@ inline void prefetch_bucket(const Vec3* first) {
     __builtin_prefetch(line + 383);
 }
 
-/// knn_bucket_candidates (knn_index.h), eight points per AVX2 operation.
+/// knn_group_candidates (knn_index.h), eight points per AVX2 operation.
 /// Per axis, with c = origin - p (a double rounded to float) and the point's
 /// offset d' = code * step + c in float, the exact offset d = x - p obeys
 ///     |d| >= |d'| - e,   e = step + 2^-21 |c|
@@ -169,8 +170,8 @@ inline void prefetch_bucket(const Vec3* first) {
 /// times the exact squared distance (7 roundings, plus tiny absolute terms
 /// for subnormals), so a point whose bound exceeds the bound grown by
 /// 2^-19 (plus 2^-120) is farther than `bound` and is dropped; NaN keeps it.
-[[gnu::target("avx2")]] inline uint32_t bucket_candidates(const KnnBucket& bucket, uint32_t n,
-                                                                              const Vec3& p, double bound) {
+[[gnu::target("avx2")]] inline uint64_t group_candidates(const KnnGroup& bucket, uint32_t n, const Vec3& p,
+                                                         double bound) {
     const double step = bucket.step;
     // (1 + 2^-22): a value rounded to float is not below the double it came from.
     const __m256 limit = _mm256_set1_ps(float((bound * (1 + 0x1p-19) + 0x1p-120) * (1 + 0x1p-22)));
@@ -181,8 +182,8 @@ inline void prefetch_bucket(const Vec3* first) {
         c[a] = _mm256_set1_ps(float(ca));
         e[a] = _mm256_set1_ps(float((step + 0x1p-21 * std::fabs(ca) + 0x1p-100) * (1 + 0x1p-22)));
     }
-    uint32_t mask = 0;
-    for (int half = 0; half < 2; ++half) {
+    uint64_t mask = 0;
+    for (uint32_t half = 0; 8 * half < n; ++half) {
         __m256 sum = zero;
         for (int a = 0; a < 3; ++a) {
             const __m128i codes = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(bucket.code[a] + 8 * half));
@@ -190,9 +191,9 @@ inline void prefetch_bucket(const Vec3* first) {
             const __m256 low = _mm256_max_ps(_mm256_sub_ps(_mm256_andnot_ps(sign, d), e[a]), zero);
             sum = _mm256_add_ps(sum, _mm256_mul_ps(low, low));
         }
-        mask |= uint32_t(_mm256_movemask_ps(_mm256_cmp_ps(sum, limit, _CMP_NGT_UQ))) << (8 * half);
+        mask |= uint64_t(_mm256_movemask_ps(_mm256_cmp_ps(sum, limit, _CMP_NGT_UQ))) << (8 * half);
     }
-    return mask & ((1u << n) - 1);
+    return n >= 64 ? mask : mask & ((uint64_t(1) << n) - 1);
 }
 
 /// The query from a guessed bound, when the processor has AVX2: every point
@@ -224,13 +225,15 @@ enum class Collected { kAnswer, kFewer, kTie, kCrowded };
                                                  uint32_t* best_at) {
     const size_t capacity = 2 * k + 16;
     constexpr int kMaxBuckets = 64;
+    if (!prefetch) quantised = nullptr;  // the groups are listed, never scanned as they come
     thread_local std::vector<double> dist2_storage;
     thread_local std::vector<uint32_t> at_storage, order_storage;
     thread_local std::vector<float> key_storage;
-    if (at_storage.size() < capacity + kScanBelow * (kMaxBuckets + 1)) {
-        dist2_storage.resize(capacity + kScanBelow * (kMaxBuckets + 1));
-        at_storage.resize(capacity + kScanBelow * (kMaxBuckets + 1));
-        order_storage.resize(capacity + kScanBelow * (kMaxBuckets + 1));
+    const size_t storage = capacity + kKnnGroupBelow * (kMaxBuckets + 1);
+    if (at_storage.size() < storage) {
+        dist2_storage.resize(storage);
+        at_storage.resize(storage);
+        order_storage.resize(storage);
         key_storage.resize(capacity + kScanBelow + 8);
     }
     double* dist2 = dist2_storage.data();
@@ -258,7 +261,8 @@ enum class Collected { kAnswer, kFewer, kTie, kCrowded };
     kdtree_detail::Cell cell = kdtree_detail::Cell::root(tree);
     double offset[3] = {0, 0, 0};
     for (;;) {
-        kdtree_detail::descend_to_bucket(nodes, p, cell, offset, stack, top);
+        if (quantised) kdtree_detail::descend_to_bucket<kKnnGroupBelow>(nodes, p, cell, offset, stack, top);
+        else kdtree_detail::descend_to_bucket(nodes, p, cell, offset, stack, top);
         if (prefetch) {
             // The bound is fixed, so every bucket reached is scanned: listed
             // now with its lines prefetched and scanned after the traversal,
@@ -267,8 +271,15 @@ enum class Collected { kAnswer, kFewer, kTie, kCrowded };
             bucket_lo[bucket_count] = cell.lo;
             bucket_hi[bucket_count] = cell.hi;
             bucket_heap[bucket_count++] = cell.heap;
-            if (quantised) __builtin_prefetch(&quantised->buckets[cell.heap - quantised->first_bucket]);
-            else prefetch_bucket(points + cell.lo);
+            if (quantised) {
+                const char* group = reinterpret_cast<const char*>(&quantised->groups[cell.heap - quantised->first_group]);
+                __builtin_prefetch(group);
+                __builtin_prefetch(group + 64);
+                __builtin_prefetch(group + 128);
+                __builtin_prefetch(group + 192);
+            } else {
+                prefetch_bucket(points + cell.lo);
+            }
         } else if (!scan(cell.lo, cell.hi)) {
             return Collected::kCrowded;
         }
@@ -284,20 +295,17 @@ enum class Collected { kAnswer, kFewer, kTie, kCrowded };
         cell = kdtree_detail::Cell::resume(*next, offset);
     }
     if (quantised) {
-        // The quantised buckets name the points that may lie within the
+        // The quantised groups name the points that may lie within the
         // bound (a few more than do); only those are read from the tree,
         // their lines prefetched first, and kept by their exact distance:
-        // the same points as the scan of whole buckets keeps.
+        // the same points as a scan of the groups' buckets and inner nodes
+        // keeps.
         uint32_t* candidate = order_storage.data();
         size_t candidates = 0;
         for (int b = 0; b < bucket_count; ++b) {
             const uint32_t lo = bucket_lo[b], n = bucket_hi[b] - lo;
-            const uint32_t mask =
-                bucket_candidates(quantised->buckets[bucket_heap[b] - quantised->first_bucket], n, p, bound);
-            for (uint32_t j = 0; j < n; ++j) {
-                candidate[candidates] = lo + j;
-                candidates += (mask >> j) & 1;
-            }
+            uint64_t mask = group_candidates(quantised->groups[bucket_heap[b] - quantised->first_group], n, p, bound);
+            for (; mask; mask &= mask - 1) candidate[candidates++] = lo + uint32_t(__builtin_ctzll(mask));
         }
         for (size_t i = 0; i < candidates; ++i) {
             __builtin_prefetch(points + candidate[i]);
@@ -348,28 +356,28 @@ KnnIndex build_knn_index(const KdTree& tree) {
     KnnIndex index;
     index.tree_size = tree.size();
     if (tree.empty()) return index;
-    // Buckets are numbered 2^shallowest .. 2^(deepest + 1) - 1.
-    index.first_bucket = uint32_t(1) << bucket_depth(tree.size(), false);
-    index.buckets.resize((size_t(1) << (bucket_depth(tree.size(), true) + 1)) - index.first_bucket);
+    // Groups are numbered 2^shallowest .. 2^(deepest + 1) - 1.
+    index.first_group = uint32_t(1) << group_depth(tree.size(), false);
+    index.groups.resize((size_t(1) << (group_depth(tree.size(), true) + 1)) - index.first_group);
     const int depth = inner_depth(0, tree.size());
     // Numbers 1 .. 2^(depth + 1) - 1: pairs 0 .. 2^depth - 1.
     if (depth >= 0) index.pairs.resize(size_t(1) << depth);
     bool quantised = true;
-    copy_nodes(tree, index, 0, tree.size(), 1, quantised);
+    copy_nodes(tree, index, 0, tree.size(), 1, false, quantised);
     if (!quantised) {
-        index.buckets.clear();
-        index.buckets.shrink_to_fit();
+        index.groups.clear();
+        index.groups.shrink_to_fit();
     }
     return index;
 }
 
-bool knn_bucket_filter_applies(const Vec3& p, double bound) {
+bool knn_group_filter_applies(const Vec3& p, double bound) {
     return std::fabs(p.x) <= kFilterRange && std::fabs(p.y) <= kFilterRange && std::fabs(p.z) <= kFilterRange &&
            bound >= 0 && bound <= kFilterRange * kFilterRange;
 }
 
-uint32_t knn_bucket_candidates(const KnnBucket& bucket, uint32_t n, const Vec3& p, double bound) {
-    return bucket_candidates(bucket, n, p, bound);
+uint64_t knn_group_candidates(const KnnGroup& group, uint32_t n, const Vec3& p, double bound) {
+    return group_candidates(group, n, p, bound);
 }
 
 KnnGuessCounts knn_guess_counts() { return guess_counts; }
@@ -400,7 +408,7 @@ void k_nearest(const KdTree& tree, const KnnIndex& index, const Vec3& p, int k, 
     memory.last_p = p;
     const Collected collected = guess < max_dist2 && avx2
                                     ? collect_search(tree, nodes, p, kept, guess, !coherent,
-                                                     !index.buckets.empty() && knn_bucket_filter_applies(p, guess)
+                                                     !index.groups.empty() && knn_group_filter_applies(p, guess)
                                                          ? &index
                                                          : nullptr,
                                                      best, at)

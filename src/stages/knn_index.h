@@ -40,14 +40,17 @@
 // distance away) lists the buckets within the guess first and prefetches
 // them, so that their cache misses overlap.
 //
-// Quantised buckets (issue 19, round 5): such a far query does not read
-// whole buckets from the tree. Each bucket also has a 64-byte copy here
-// (KnnBucket: each coordinate as 8 bits within the bucket's box, 4 MB for
-// 10^6 points against the tree's 24 MB), from which a conservative lower
-// bound of each point's squared distance is computed in float; only the
-// points it does not rule out (about 70 of some 330, k = 50) are read from
-// the tree, prefetched, and kept by their exact distance: the same points
-// as a scan of the whole buckets keeps, so the answers do not change.
+// Quantised groups (issue 19, round 5): such a far query neither descends
+// below subtrees of at most 64 points (groups) nor reads them from the
+// tree. Each group also has a copy here (KnnGroup: each coordinate as 8 bits
+// within the group's box, one cache line per axis, 4 MB for 10^6 points
+// against the tree's 24 MB), from which a conservative lower bound of each
+// point's squared distance is computed in float; only the points it does
+// not rule out (about 70, k = 50) are read from the tree, prefetched, and
+// kept by their exact distance: the same points as the descent into the
+// group and the scan of its buckets keeps, so the answers do not change.
+// The descent stops two levels higher, so it reads only the top 0.5 MB of
+// the inner nodes (cached).
 //
 // Tests: tests/unit/test_knn_index.cpp; cost in `bench kdtree`.
 #pragma once
@@ -70,34 +73,40 @@ struct alignas(64) KnnNodePair {
     KnnNode node[2];
 };
 
-/// A bucket (at most 16 points) quantised to 8 bits per coordinate in one
-/// cache line: point j lies within `step` of origin + code[.][j] * step on
-/// each axis (the rounding leaves half a step; the other half is margin).
-/// Only a filter: a point is read from the tree before it is kept.
-struct alignas(64) KnnBucket {
-    float origin[3] = {0, 0, 0};  ///< at or below the bucket's smallest coordinate on each axis
-    float step = 0;               ///< the bucket's largest extent / 255, rounded up (0: all points at origin)
-    uint8_t code[3][16] = {};     ///< code[axis][j], point j of the bucket
+/// The quantised groups are the subtrees of at most this many points
+/// reached by the descent (a group holds its buckets and the inner nodes
+/// between them).
+constexpr uint32_t kKnnGroupBelow = 64;
+
+/// A group (at most kKnnGroupBelow points, in tree order) quantised to 8
+/// bits per coordinate, one cache line per axis: point j lies within `step`
+/// of origin + code[.][j] * step on each axis (the rounding leaves half a
+/// step; the other half is margin). Only a filter: a point is read from
+/// the tree before it is kept.
+struct alignas(64) KnnGroup {
+    uint8_t code[3][kKnnGroupBelow] = {};  ///< code[axis][j], point lo + j of the group [lo, hi)
+    float origin[3] = {0, 0, 0};           ///< at or below the group's smallest coordinate on each axis
+    float step = 0;                        ///< the group's largest extent / 255, rounded up (0: all points at origin)
 };
 
 struct KnnIndex {
     std::vector<KnnNodePair> pairs;  ///< node h at pairs[h / 2].node[h % 2]; unused numbers are holes
-    std::vector<KnnBucket> buckets;  ///< the bucket of number h at buckets[h - first_bucket]; empty: none (see below)
-    uint32_t first_bucket = 0;       ///< the smallest breadth-first number of a bucket
+    std::vector<KnnGroup> groups;    ///< the group of number h at groups[h - first_group]; empty: none (see below)
+    uint32_t first_group = 0;        ///< the smallest breadth-first number of a group
     size_t tree_size = 0;            ///< points of the tree it was built from
 
     const KnnNode& node(uint32_t h) const { return pairs[h / 2].node[h % 2]; }
-    size_t bytes() const { return pairs.capacity() * sizeof(KnnNodePair) + buckets.capacity() * sizeof(KnnBucket); }
+    size_t bytes() const { return pairs.capacity() * sizeof(KnnNodePair) + groups.capacity() * sizeof(KnnGroup); }
 };
 
-/// Which of the n points of `bucket` may lie within `bound` (squared) of p:
+/// Which of the n points of `group` may lie within `bound` (squared) of p:
 /// bit j clear only when point j is certainly farther (a lower bound of its
 /// squared distance, from the quantisation step and a bound of the float
 /// rounding, exceeds it). Needs AVX2; for the query and the tests.
-uint32_t knn_bucket_candidates(const KnnBucket& bucket, uint32_t n, const Vec3& p, double bound);
-/// Whether knn_bucket_candidates' arithmetic is exact enough for p and
+uint64_t knn_group_candidates(const KnnGroup& group, uint32_t n, const Vec3& p, double bound);
+/// Whether knn_group_candidates' arithmetic is exact enough for p and
 /// bound (coordinates and bound far below float's range; else it is not used).
-bool knn_bucket_filter_applies(const Vec3& p, double bound);
+bool knn_group_filter_applies(const Vec3& p, double bound);
 
 /// How often this thread's indexed queries started from a guessed bound,
 /// and how many of those were answered again from scratch (for `bench`

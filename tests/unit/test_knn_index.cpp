@@ -299,29 +299,29 @@ TEST_CASE("knn index: each inner node's record is the tree's node point and axis
 
 namespace {
 
-/// Every bucket of `tree` (a range of at most 16 points) with its breadth-first number.
-struct BucketRange {
+/// Every group of `tree` (the first ranges of at most kKnnGroupBelow points) with its breadth-first number.
+struct GroupRange {
     size_t lo, hi;
     uint32_t h;
 };
-std::vector<BucketRange> tree_buckets(const KdTree& tree) {
-    std::vector<BucketRange> buckets, todo = {{0, tree.size(), 1}};
+std::vector<GroupRange> tree_groups(const KdTree& tree) {
+    std::vector<GroupRange> groups, todo = {{0, tree.size(), 1}};
     while (!todo.empty()) {
-        const BucketRange r = todo.back();
+        const GroupRange r = todo.back();
         todo.pop_back();
-        if (r.hi - r.lo <= 16) {
-            buckets.push_back(r);
+        if (r.hi - r.lo <= kKnnGroupBelow) {
+            groups.push_back(r);
             continue;
         }
         const size_t mid = r.lo + (r.hi - r.lo) / 2;
         todo.push_back({r.lo, mid, 2 * r.h});
         todo.push_back({mid + 1, r.hi, 2 * r.h + 1});
     }
-    return buckets;
+    return groups;
 }
 
-/// The quantised filter on every bucket of the tree over `points`, for
-/// queries near the buckets and on their points, with each point's exact
+/// The quantised filter on every group of the tree over `points`, for
+/// queries near the groups and on their points, with each point's exact
 /// squared distance as the bound (the hardest case: a point exactly at the
 /// bound must be kept): returns how many points within the bound it
 /// dropped (must be none), and adds to `dropped_far` / `far` how many
@@ -329,14 +329,14 @@ std::vector<BucketRange> tree_buckets(const KdTree& tree) {
 int filter_misses(const std::vector<Vec3>& points, uint64_t seed, int& dropped_far, int& far) {
     const KdTree tree = reference::build_kdtree(points);
     const KnnIndex index = build_knn_index(tree);
-    REQUIRE(!index.buckets.empty());
+    REQUIRE(!index.groups.empty());
     Rng rng(seed);
     int misses = 0;
-    for (const BucketRange& b : tree_buckets(tree)) {
-        const KnnBucket& bucket = index.buckets[b.h - index.first_bucket];
+    for (const GroupRange& b : tree_groups(tree)) {
+        const KnnGroup& group = index.groups[b.h - index.first_group];
         const uint32_t n = uint32_t(b.hi - b.lo);
         for (int q = 0; q < 6; ++q) {
-            // On a stored point, or near one (within about the bucket's extent).
+            // On a stored point, or near one (within about the group's extent).
             const Vec3 at = tree.points[b.lo + rng.next_u32() % n];
             const Vec3 spread = tree.points[b.lo] - tree.points[b.hi - 1];
             const Vec3 p = q < 2 ? at
@@ -344,8 +344,8 @@ int filter_misses(const std::vector<Vec3>& points, uint64_t seed, int& dropped_f
                                              (rng.next_1d() - 0.5) * spread.z);
             for (uint32_t j = 0; j < n; ++j) {
                 const double bound = (tree.points[b.lo + j] - p).norm2();
-                if (!knn_bucket_filter_applies(p, bound)) continue;
-                const uint32_t mask = knn_bucket_candidates(bucket, n, p, bound);
+                if (!knn_group_filter_applies(p, bound)) continue;
+                const uint64_t mask = knn_group_candidates(group, n, p, bound);
                 for (uint32_t i = 0; i < n; ++i) {
                     const double d2 = (tree.points[b.lo + i] - p).norm2();
                     const bool kept = (mask >> i) & 1;
@@ -363,12 +363,12 @@ int filter_misses(const std::vector<Vec3>& points, uint64_t seed, int& dropped_f
 
 }  // namespace
 
-// The quantised buckets (stages/knn_index.h) only filter: a point within
+// The quantised groups (stages/knn_index.h) only filter: a point within
 // the bound must never be dropped, whatever the rounding (coordinates far
 // from the origin with tiny spreads, duplicates, a plane, one outlier that
-// makes a bucket's step coarse); and the filter must drop most points
+// makes a group's step coarse); and the filter must drop most points
 // beyond twice the bound on random points (else it saves nothing).
-TEST_CASE("knn index: the quantised buckets never drop a point within the bound") {
+TEST_CASE("knn index: the quantised groups never drop a point within the bound") {
     if (!__builtin_cpu_supports("avx2")) return;  // the filter is used with AVX2 only
     Rng rng(41);
     int dropped_far = 0, far = 0;
@@ -400,9 +400,9 @@ TEST_CASE("knn index: the quantised buckets never drop a point within the bound"
     CHECK(walk_differences(offset, 300, 20, 1e-10, 10) == 0);
     CHECK(walk_differences(random, 300, 50, 0.5, 11) == 0);
 
-    // Out of the filter's range: no buckets, the queries still agree.
+    // Out of the filter's range: no groups, the queries still agree.
     std::vector<Vec3> huge = random;
     huge[7] = {1e20, 0, 0};
-    CHECK(build_knn_index(reference::build_kdtree(huge)).buckets.empty());
+    CHECK(build_knn_index(reference::build_kdtree(huge)).groups.empty());
     check_same_answers(huge, 100, 12);
 }
