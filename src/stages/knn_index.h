@@ -50,7 +50,9 @@
 // kept by their exact distance: the same points as the descent into the
 // group and the scan of its buckets keeps, so the answers do not change.
 // The descent stops two levels higher, so it reads only the top 0.5 MB of
-// the inner nodes (cached).
+// the inner nodes (cached). A query with fewer than k points within the
+// guess collects once more from 1.5 times it before it falls back to the
+// search without a guess.
 //
 // Tests: tests/unit/test_knn_index.cpp; cost in `bench kdtree`.
 #pragma once
@@ -115,6 +117,7 @@ struct KnnGuessCounts {
     uint64_t guessed = 0;
     uint64_t fell_back = 0;
     uint64_t crowded = 0;  ///< of the guessed: too many points within the guess, searched with insertions from it
+    uint64_t retried = 0;  ///< fewer than k points within the guess: collected again from 1.5 times it
 };
 KnnGuessCounts knn_guess_counts();
 
