@@ -232,9 +232,15 @@ enum class Collected { kAnswer, kFewer, kTie, kCrowded };
 [[gnu::target("avx2")]] Collected collect_search(const KdTree& tree, const IndexNodes& nodes, const Vec3& p, size_t k,
                                                  double bound, bool prefetch, const KnnIndex* quantised, double* best,
                                                  uint32_t* best_at) {
-    const size_t capacity = 2 * k + 16;
-    constexpr int kMaxBuckets = 64;
     if (!prefetch) quantised = nullptr;  // the groups are listed, never scanned as they come
+    // At most this many points within the guess are ranked; more (a guess
+    // too large for this query) go to the sorted insertion. Through the
+    // groups every point within the guess is collected before the count is
+    // known, so ranking up to 4k + 16 of them costs less than the insertion's
+    // second traversal (bench kdtree: 3.5% of random queries crowded at
+    // 2k + 16, 0.06% at 4k + 16, and 1.0 to 1.06 times as fast).
+    const size_t capacity = (quantised ? 4 : 2) * k + 16;
+    constexpr int kMaxBuckets = 64;
     thread_local std::vector<double> dist2_storage;
     thread_local std::vector<uint32_t> at_storage, order_storage;
     thread_local std::vector<float> key_storage;

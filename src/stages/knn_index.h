@@ -34,6 +34,7 @@
 // one's rank (how many are nearer) with AVX2 on float copies of the
 // distances and places the k of rank below k; a tie among them (or with the
 // next) shows as a repeated rank and falls back. When more than 2k + 16
+// (4k + 16 through the quantised groups below)
 // points lie within the guess it runs the sorted insertion of
 // stages/kdtree_search.h from the guess instead (as without AVX2). A
 // query far from this thread's last one (more than 4 times its k-th
