@@ -34,6 +34,7 @@
 // one's rank (how many are nearer) with AVX2 on float copies of the
 // distances and places the k of rank below k; a tie among them (or with the
 // next) shows as a repeated rank and falls back. When more than 2k + 16
+// (4k + 16 through the quantised groups below)
 // points lie within the guess it runs the sorted insertion of
 // stages/kdtree_search.h from the guess instead (as without AVX2). A
 // query far from this thread's last one (more than 4 times its k-th
@@ -50,7 +51,9 @@
 // kept by their exact distance: the same points as the descent into the
 // group and the scan of its buckets keeps, so the answers do not change.
 // The descent stops two levels higher, so it reads only the top 0.5 MB of
-// the inner nodes (cached).
+// the inner nodes (cached). A query with fewer than k points within the
+// guess collects once more from 1.5 times it before it falls back to the
+// search without a guess.
 //
 // Tests: tests/unit/test_knn_index.cpp; cost in `bench kdtree`.
 #pragma once
@@ -115,6 +118,7 @@ struct KnnGuessCounts {
     uint64_t guessed = 0;
     uint64_t fell_back = 0;
     uint64_t crowded = 0;  ///< of the guessed: too many points within the guess, searched with insertions from it
+    uint64_t retried = 0;  ///< fewer than k points within the guess: collected again from 1.5 times it
 };
 KnnGuessCounts knn_guess_counts();
 
