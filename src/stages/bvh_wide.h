@@ -16,7 +16,9 @@
 // of largest surface area is replaced by its two children until there are
 // W (or only leaves are left); each remaining interior child becomes a
 // wide node the same way. Leaves and the primitive order are the binary
-// tree's, so the per-primitive data (bvh_kernels.h) is shared.
+// tree's, so the per-primitive data (bvh_kernels.h) is shared. The 8-wide
+// tree with leaf blocks (the default) is collapsed by a plan instead: the
+// lanes and merged leaves of least SAH cost (plan_wide_nodes below).
 //
 // Layout: structure of arrays, 128 bytes per 4-wide node (two cache lines),
 // 256 per 8-wide one (four): for each of the six planes (min x, y, z, max
@@ -56,11 +58,34 @@ struct alignas(64) WideBvhNode {
 static_assert(sizeof(WideBvhNode<4>) == 128, "a 4-wide node is two cache lines");
 static_assert(sizeof(WideBvhNode<8>) == 256, "an 8-wide node is four cache lines");
 
+/// Which binary subtrees become the lanes of each wide node, when chosen by
+/// a cost model (bvh_wide.cpp, plan_wide_nodes) instead of the greedy
+/// collapse: for binary node i made a wide node, its lanes are
+/// lanes[first[i], first[i] + count[i]) (first[i] is kNoPlan otherwise).
+struct WidePlan {
+    static constexpr uint32_t kNoPlan = UINT32_MAX;
+    std::vector<uint32_t> first;
+    std::vector<uint8_t> count;
+    std::vector<uint32_t> lanes;
+    bool empty() const { return first.empty(); }
+};
+
+/// Chooses the 8-wide nodes and their leaves by cost (bvh_wide.cpp: the
+/// SAH-optimal collapse of Ylitie, Karras and Laine 2017): fills `plan` and
+/// turns each binary subtree chosen as one leaf (at most kWideMergedLeaf
+/// primitives) into that leaf in `bvh`. A wide node costs
+/// kWidePlanNodeCost times its area, a leaf its area times its blocks of four.
+constexpr uint32_t kWideMergedLeaf = 8;
+constexpr double kWidePlanNodeCost = 2.0;
+void plan_wide_nodes(FlatBvh& bvh, WidePlan& plan);
+
 /// The binary tree collapsed into W-wide nodes (W = 4 or 8); nodes[0] is the
 /// root (a root that is a leaf becomes one node with one lane). Empty for no
 /// primitives. `depth`, when given, receives the deepest wide node's level.
+/// With `plan`, each wide node takes the lanes the plan gives.
 template <int W>
-std::vector<WideBvhNode<W>> collapse_to_wide(const FlatBvh& bvh, int* depth = nullptr);
+std::vector<WideBvhNode<W>> collapse_to_wide(const FlatBvh& bvh, int* depth = nullptr,
+                                             const WidePlan* plan = nullptr);
 
 /// Whether the 8-wide AVX box test can run on this processor.
 bool wide_bvh_has_avx();

@@ -15,7 +15,8 @@ float box_area(const FlatBvhNode& n) {
 template <int W>
 class Collapser {
   public:
-    Collapser(const FlatBvh& bvh, std::vector<WideBvhNode<W>>& out) : bvh_(bvh), out_(out) {}
+    Collapser(const FlatBvh& bvh, std::vector<WideBvhNode<W>>& out, const WidePlan* plan)
+        : bvh_(bvh), out_(out), plan_(plan) {}
 
     /// Makes the wide node for binary node `index` (its children, or itself
     /// when it is a leaf) and returns its position in `out`.
@@ -41,12 +42,14 @@ class Collapser {
         };
         if (n.is_leaf()) {
             add(0, index);
+        } else if (plan_ && plan_->first[index] != WidePlan::kNoPlan) {
+            for (uint32_t k = 0; k < plan_->count[index]; ++k) add(used, plan_->lanes[plan_->first[index] + k]);
         } else {
             add(0, index + 1);
             add(1, n.offset);
         }
         // Open the interior lane of largest surface area until W lanes are used.
-        while (used < W) {
+        while (!plan_ && used < W) {
             int widest = -1;
             for (int i = 0; i < used; ++i)
                 if (interior[i] && (widest < 0 || areas[i] > areas[widest])) widest = i;
@@ -83,25 +86,26 @@ class Collapser {
   private:
     const FlatBvh& bvh_;
     std::vector<WideBvhNode<W>>& out_;
+    const WidePlan* plan_;
 };
 
 }  // namespace
 
 template <int W>
-std::vector<WideBvhNode<W>> collapse_to_wide(const FlatBvh& bvh, int* depth) {
+std::vector<WideBvhNode<W>> collapse_to_wide(const FlatBvh& bvh, int* depth, const WidePlan* plan) {
     std::vector<WideBvhNode<W>> out;
     if (bvh.nodes.empty()) return out;
     // Measured: about one wide node per 5.8 binary nodes (8-wide) or 3
     // (4-wide) on meshes and the knot; reserving a little more than that
     // saves the copies of a growing vector.
     out.reserve(bvh.nodes.size() / (W == 8 ? 5 : 2) + 1);
-    Collapser<W> c(bvh, out);
+    Collapser<W> c(bvh, out, plan);
     c.collapse(0, 0);
     if (depth) *depth = c.deepest;
     return out;
 }
 
-template std::vector<WideBvhNode<4>> collapse_to_wide<4>(const FlatBvh&, int*);
-template std::vector<WideBvhNode<8>> collapse_to_wide<8>(const FlatBvh&, int*);
+template std::vector<WideBvhNode<4>> collapse_to_wide<4>(const FlatBvh&, int*, const WidePlan*);
+template std::vector<WideBvhNode<8>> collapse_to_wide<8>(const FlatBvh&, int*, const WidePlan*);
 
 }  // namespace pt
