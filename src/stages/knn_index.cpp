@@ -345,11 +345,15 @@ enum class Collected { kAnswer, kFewer, kTie, kCrowded };
         for (int b = 0; b < bucket_count; ++b) {
             const uint32_t lo = bucket_lo[b], n = bucket_hi[b] - lo;
             uint64_t mask = group_candidates(quantised->groups[bucket_heap[b] - quantised->first_group], n, p, bound);
-            for (; mask; mask &= mask - 1) candidate[candidates++] = lo + uint32_t(__builtin_ctzll(mask));
-        }
-        for (size_t i = 0; i < candidates; ++i) {
-            __builtin_prefetch(points + candidate[i]);
-            __builtin_prefetch(reinterpret_cast<const char*>(points + candidate[i]) + sizeof(Vec3) - 1);
+            // Each candidate's lines prefetched as soon as it is known, so
+            // that its misses overlap the filter of the next groups (whose
+            // lines may still be on their way).
+            for (; mask; mask &= mask - 1) {
+                const uint32_t c = lo + uint32_t(__builtin_ctzll(mask));
+                candidate[candidates++] = c;
+                __builtin_prefetch(points + c);
+                __builtin_prefetch(reinterpret_cast<const char*>(points + c) + sizeof(Vec3) - 1);
+            }
         }
         for (size_t i = 0; i < candidates; ++i) {
             const double d2 = (points[candidate[i]] - p).norm2();
