@@ -279,6 +279,7 @@ enum class Collected { kAnswer, kFewer, kTie, kCrowded };
     double* dist2 = dist2_storage.data();
     uint32_t* at = at_storage.data();
     const Vec3* points = tree.points.data();
+    const uint32_t* ids = tree.ids.data();
     size_t m = 0;
 
     // Every point of the bucket [lo, hi) within the bound appended, without
@@ -347,12 +348,14 @@ enum class Collected { kAnswer, kFewer, kTie, kCrowded };
             uint64_t mask = group_candidates(quantised->groups[bucket_heap[b] - quantised->first_group], n, p, bound);
             // Each candidate's lines prefetched as soon as it is known, so
             // that its misses overlap the filter of the next groups (whose
-            // lines may still be on their way).
+            // lines may still be on their way), and its id's line too: the
+            // answers' ids are looked up at the end, a miss each otherwise.
             for (; mask; mask &= mask - 1) {
                 const uint32_t c = lo + uint32_t(__builtin_ctzll(mask));
                 candidate[candidates++] = c;
                 __builtin_prefetch(points + c);
                 __builtin_prefetch(reinterpret_cast<const char*>(points + c) + sizeof(Vec3) - 1);
+                __builtin_prefetch(ids + c);
             }
         }
         for (size_t i = 0; i < candidates; ++i) {
