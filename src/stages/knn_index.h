@@ -41,7 +41,8 @@
 // distance away) lists the buckets within the guess first and prefetches
 // them, so that their cache misses overlap.
 //
-// Quantised groups (issue 19, round 5): such a far query neither descends
+// Quantised groups (issue 19, round 5): such a far query (since round 6
+// every query, a coherent one too: 1.2 times as fast) neither descends
 // below subtrees of at most 64 points (groups) nor reads them from the
 // tree. Each group also has a copy here (KnnGroup: each coordinate as 8 bits
 // within the group's box, one cache line per axis, 4 MB for 10^6 points
