@@ -59,7 +59,7 @@ static_assert(sizeof(WideBvhNode<4>) == 128, "a 4-wide node is two cache lines")
 static_assert(sizeof(WideBvhNode<8>) == 256, "an 8-wide node is four cache lines");
 
 /// Which binary subtrees become the lanes of each wide node, when chosen by
-/// a cost model (bvh_wide.cpp, plan_wide_nodes) instead of the greedy
+/// a cost model (bvh_wide_plan.cpp, plan_wide_nodes) instead of the greedy
 /// collapse: for binary node i made a wide node, its lanes are
 /// lanes[first[i], first[i] + count[i]) (first[i] is kNoPlan otherwise).
 struct WidePlan {
@@ -70,7 +70,7 @@ struct WidePlan {
     bool empty() const { return first.empty(); }
 };
 
-/// Chooses the 8-wide nodes and their leaves by cost (bvh_wide.cpp: the
+/// Chooses the 8-wide nodes and their leaves by cost (bvh_wide_plan.cpp: the
 /// SAH-optimal collapse of Ylitie, Karras and Laine 2017): fills `plan` and
 /// turns each binary subtree chosen as one leaf (at most kWideMergedLeaf
 /// primitives) into that leaf in `bvh`. A wide node costs
