@@ -47,7 +47,7 @@
 // tree. Each group also has a copy here (KnnGroup: each coordinate as 8 bits
 // within the group's box, one cache line per axis, 4 MB for 10^6 points
 // against the tree's 24 MB), from which a conservative lower bound of each
-// point's squared distance is computed in float; only the points it does
+// point's squared distance is computed in 16-bit integers (in whole steps); only the points it does
 // not rule out (about 70, k = 50) are read from the tree, prefetched, and
 // kept by their exact distance: the same points as the descent into the
 // group and the scan of its buckets keeps, so the answers do not change.

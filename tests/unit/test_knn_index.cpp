@@ -335,13 +335,16 @@ int filter_misses(const std::vector<Vec3>& points, uint64_t seed, int& dropped_f
     for (const GroupRange& b : tree_groups(tree)) {
         const KnnGroup& group = index.groups[b.h - index.first_group];
         const uint32_t n = uint32_t(b.hi - b.lo);
-        for (int q = 0; q < 6; ++q) {
-            // On a stored point, or near one (within about the group's extent).
+        for (int q = 0; q < 8; ++q) {
+            // On a stored point, or near one (within about the group's
+            // extent), or far from the group (hundreds of its extents: the
+            // query's position in steps is then clamped to 16 bits).
             const Vec3 at = tree.points[b.lo + rng.next_u32() % n];
             const Vec3 spread = tree.points[b.lo] - tree.points[b.hi - 1];
-            const Vec3 p = q < 2 ? at
-                                 : at + Vec3((rng.next_1d() - 0.5) * spread.x, (rng.next_1d() - 0.5) * spread.y,
-                                             (rng.next_1d() - 0.5) * spread.z);
+            const Vec3 p = q < 2   ? at
+                           : q < 6 ? at + Vec3((rng.next_1d() - 0.5) * spread.x, (rng.next_1d() - 0.5) * spread.y,
+                                               (rng.next_1d() - 0.5) * spread.z)
+                                   : at + spread * (q == 6 ? 300.0 : -3000.0);
             for (uint32_t j = 0; j < n; ++j) {
                 const double bound = (tree.points[b.lo + j] - p).norm2();
                 if (!knn_group_filter_applies(p, bound)) continue;
