@@ -268,9 +268,11 @@ template <int B>
 /// bucket reached will be scanned, and the misses overlap instead of
 /// following one another (1.2 to 1.3 times as fast in random order; 1 to 3%
 /// slower for coherent queries, which therefore scan as they go).
+/// `far`: the query is not coherent (see kCoherent2), so its groups'
+/// candidates are prefetched as each group is filtered.
 enum class Collected { kAnswer, kFewer, kTie, kCrowded };
 [[gnu::target("avx2")]] Collected collect_search(const KdTree& tree, const IndexNodes& nodes, const Vec3& p, size_t k,
-                                                 double bound, bool prefetch, const KnnIndex* quantised, double* best,
+                                                 double bound, bool prefetch, bool far, const KnnIndex* quantised, double* best,
                                                  uint32_t* best_at) {
     if (!prefetch) quantised = nullptr;  // the groups are listed, never scanned as they come
     // At most this many points within the guess are ranked; more (a guess
@@ -360,13 +362,9 @@ enum class Collected { kAnswer, kFewer, kTie, kCrowded };
         // keeps.
         uint32_t* candidate = order_storage.data();
         size_t candidates = 0;
-        for (int b = 0; b < bucket_count; ++b) {
-            const uint32_t lo = bucket_lo[b], n = bucket_hi[b] - lo;
-            uint64_t mask = group_candidates(quantised->groups[bucket_heap[b] - quantised->first_group], n, p, bound);
-            // Each candidate's lines prefetched as soon as it is known, so
-            // that its misses overlap the filter of the next groups (whose
-            // lines may still be on their way), and its id's line too: the
-            // answers' ids are looked up at the end, a miss each otherwise.
+        // Each candidate's lines prefetched, and its id's line too: the
+        // answers' ids are looked up at the end, a miss each otherwise.
+        auto take = [&](uint32_t lo, uint64_t mask) {
             for (; mask; mask &= mask - 1) {
                 const uint32_t c = lo + uint32_t(__builtin_ctzll(mask));
                 candidate[candidates++] = c;
@@ -374,6 +372,22 @@ enum class Collected { kAnswer, kFewer, kTie, kCrowded };
                 __builtin_prefetch(reinterpret_cast<const char*>(points + c) + sizeof(Vec3) - 1);
                 __builtin_prefetch(ids + c);
             }
+        };
+        auto filter = [&](int b) {
+            return group_candidates(quantised->groups[bucket_heap[b] - quantised->first_group], bucket_hi[b] - bucket_lo[b], p, bound);
+        };
+        if (far) {
+            // The candidates of a far query are prefetched as soon as their
+            // group is filtered: their misses overlap the filter of the next
+            // groups (whose lines may still be on their way).
+            for (int b = 0; b < bucket_count; ++b) take(bucket_lo[b], filter(b));
+        } else {
+            // A coherent query's groups and points are cached: all groups
+            // filtered first, in a loop without a data-dependent branch, so
+            // that the processor overlaps them, and then the candidates taken.
+            uint64_t masks[kMaxBuckets];
+            for (int b = 0; b < bucket_count; ++b) masks[b] = filter(b);
+            for (int b = 0; b < bucket_count; ++b) take(bucket_lo[b], masks[b]);
         }
         for (size_t i = 0; i < candidates; ++i) {
             const double d2 = (points[candidate[i]] - p).norm2();
@@ -497,7 +511,7 @@ void k_nearest(const KdTree& tree, const KnnIndex& index, const Vec3& p, int k, 
     // far query lists its buckets.
     auto collect = [&](double bound) {
         const bool groups = !index.groups.empty() && knn_group_filter_applies(p, bound);
-        return collect_search(tree, nodes, p, kept, bound, groups || !coherent, groups ? &index : nullptr, best, at);
+        return collect_search(tree, nodes, p, kept, bound, groups || !coherent, !coherent, groups ? &index : nullptr, best, at);
     };
     double bound = guess;
     // The rank count's per-lane sums need k below 2^16 (see collect_search).
