@@ -32,43 +32,6 @@ int group_depth(size_t n, bool deepest) {
     return depth;
 }
 
-/// The largest coordinate the quantised filter accepts (of a point, of a
-/// query): squared distances stay far inside float's range.
-constexpr double kFilterRange = 1e18;
-
-/// Quantises the group [lo, hi) into `bucket` (see KnnGroup); false when
-/// a coordinate is out of the filter's range or a point is not within
-/// 0.75 steps of its code on each axis (then the index holds no groups).
-bool quantise_group(const KdTree& tree, size_t lo, size_t hi, KnnGroup& bucket) {
-    double low[3], high[3];
-    for (int a = 0; a < 3; ++a) low[a] = high[a] = tree.points[lo][a];
-    for (size_t i = lo; i < hi; ++i)
-        for (int a = 0; a < 3; ++a) {
-            const double x = tree.points[i][a];
-            if (!(std::fabs(x) <= kFilterRange)) return false;
-            low[a] = std::min(low[a], x);
-            high[a] = std::max(high[a], x);
-        }
-    double extent = 0;
-    for (int a = 0; a < 3; ++a) {
-        float origin = float(low[a]);
-        if (double(origin) > low[a]) origin = std::nextafter(origin, -std::numeric_limits<float>::infinity());
-        bucket.origin[a] = origin;
-        extent = std::max(extent, high[a] - double(origin));
-    }
-    float step = float(extent / 255);
-    if (double(step) < extent / 255) step = std::nextafter(step, std::numeric_limits<float>::infinity());
-    bucket.step = step;
-    for (size_t i = lo; i < hi; ++i)
-        for (int a = 0; a < 3; ++a) {
-            const double offset = tree.points[i][a] - double(bucket.origin[a]);
-            const double code = step > 0 ? std::clamp(std::nearbyint(offset / double(step)), 0.0, 255.0) : 0.0;
-            bucket.code[a][i - lo] = uint8_t(code);
-            if (!(std::fabs(offset - code * double(step)) <= 0.75 * double(step))) return false;
-        }
-    return true;
-}
-
 void copy_nodes(const KdTree& tree, KnnIndex& index, size_t lo, size_t hi, uint32_t h, bool in_group, bool& quantised) {
     if (!in_group && hi - lo <= kKnnGroupBelow) {
         if (quantised) quantised = quantise_group(tree, lo, hi, index.groups[h - index.first_group]);
@@ -175,51 +138,6 @@ inline void prefetch_bucket(const Vec3* first) {
     __builtin_prefetch(line + 256);
     __builtin_prefetch(line + 320);
     __builtin_prefetch(line + 383);
-}
-
-/// knn_group_candidates (knn_index.h), sixteen points per AVX2 operation,
-/// in integers (issue 19, round 6; round 5 computed it in float, eight per
-/// operation). In units of the step s, point j lies within 0.75 of its code
-/// c (quantise_group checks it), and the query at u = (p - origin) / s; with
-/// q = floor(u) computed in double (error far below 0.25 for |u| < 2^14),
-///     |x - p| / s >= |c - u| - 0.75 > |c - q| - 2,
-/// so L = max(0, |c - q| - 2) per axis (16-bit lanes, q clamped to
-/// [-16000, 16255], which only lowers L) is a lower bound, and a point is
-/// dropped only when the exact integer L_x^2 + L_y^2 + L_z^2 (at most
-/// 8 * 10^8, in 32-bit lanes) exceeds bound / s^2, rounded up. The bound is
-/// one step looser than round 5's float one: 2% more candidates.
-[[gnu::target("avx2")]] inline uint64_t group_candidates(const KnnGroup& bucket, uint32_t n, const Vec3& p,
-                                                         double bound) {
-    const uint64_t all = n >= 64 ? ~uint64_t(0) : (uint64_t(1) << n) - 1;
-    const double step = bucket.step;
-    if (!(step > 0)) return all;
-    const double q = bound / (step * step);
-    if (!(q < 2e9)) return all;
-    const __m256i limit = _mm256_set1_epi32(int32_t(q * (1 + 0x1p-48)) + 1);
-    __m256i at[3];
-    for (int a = 0; a < 3; ++a) {
-        double u = std::floor((p[a] - double(bucket.origin[a])) / step);
-        u = u >= -16000 ? (u <= 16255 ? u : 16255) : -16000;
-        at[a] = _mm256_set1_epi16(int16_t(u));
-    }
-    const __m256i two = _mm256_set1_epi16(2), zero = _mm256_setzero_si256();
-    uint64_t mask = 0;
-    for (uint32_t block = 0; 16 * block < n; ++block) {
-        __m256i low[3];
-        for (int a = 0; a < 3; ++a) {
-            const __m256i code = _mm256_cvtepu8_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(bucket.code[a] + 16 * block)));
-            low[a] = _mm256_subs_epu16(_mm256_abs_epi16(_mm256_sub_epi16(code, at[a])), two);
-        }
-        const __m256i xy_lo = _mm256_unpacklo_epi16(low[0], low[1]), xy_hi = _mm256_unpackhi_epi16(low[0], low[1]);
-        const __m256i z_lo = _mm256_unpacklo_epi16(low[2], zero), z_hi = _mm256_unpackhi_epi16(low[2], zero);
-        const __m256i sum_lo = _mm256_add_epi32(_mm256_madd_epi16(xy_lo, xy_lo), _mm256_madd_epi16(z_lo, z_lo));
-        const __m256i sum_hi = _mm256_add_epi32(_mm256_madd_epi16(xy_hi, xy_hi), _mm256_madd_epi16(z_hi, z_hi));
-        const uint32_t far_lo = uint32_t(_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpgt_epi32(sum_lo, limit))));
-        const uint32_t far_hi = uint32_t(_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpgt_epi32(sum_hi, limit))));
-        const uint64_t far = (far_lo & 0xF) | (far_hi & 0xF) << 4 | (far_lo & 0xF0) << 4 | (far_hi & 0xF0) << 8;
-        mask |= far << (16 * block);
-    }
-    return ~mask & all;
 }
 
 /// The ranks (how many of the m keys are smaller) of the keys of blocks
@@ -374,7 +292,7 @@ enum class Collected { kAnswer, kFewer, kTie, kCrowded };
             }
         };
         auto filter = [&](int b) {
-            return group_candidates(quantised->groups[bucket_heap[b] - quantised->first_group], bucket_hi[b] - bucket_lo[b], p, bound);
+            return knn_group_candidates(quantised->groups[bucket_heap[b] - quantised->first_group], bucket_hi[b] - bucket_lo[b], p, bound);
         };
         if (far) {
             // The candidates of a far query are prefetched as soon as their
@@ -467,15 +385,6 @@ KnnIndex build_knn_index(const KdTree& tree) {
         index.groups.shrink_to_fit();
     }
     return index;
-}
-
-bool knn_group_filter_applies(const Vec3& p, double bound) {
-    return std::fabs(p.x) <= kFilterRange && std::fabs(p.y) <= kFilterRange && std::fabs(p.z) <= kFilterRange &&
-           bound >= 0 && bound <= kFilterRange * kFilterRange;
-}
-
-uint64_t knn_group_candidates(const KnnGroup& group, uint32_t n, const Vec3& p, double bound) {
-    return group_candidates(group, n, p, bound);
 }
 
 KnnGuessCounts knn_guess_counts() { return guess_counts; }

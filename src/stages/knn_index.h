@@ -44,7 +44,7 @@
 // Quantised groups (issue 19, round 5): such a far query (since round 6
 // every query, a coherent one too: 1.2 times as fast) neither descends
 // below subtrees of at most 64 points (groups) nor reads them from the
-// tree. Each group also has a copy here (KnnGroup: each coordinate as 8 bits
+// tree. Each group also has a copy here (KnnGroup, stages/knn_group.h: each coordinate as 8 bits
 // within the group's box, one cache line per axis, 4 MB for 10^6 points
 // against the tree's 24 MB), from which a conservative lower bound of each
 // point's squared distance is computed in 16-bit integers (in whole steps); only the points it does
@@ -63,6 +63,7 @@
 #include <vector>
 
 #include "stages/kdtree.h"
+#include "stages/knn_group.h"
 
 namespace pt {
 
@@ -77,22 +78,6 @@ struct alignas(64) KnnNodePair {
     KnnNode node[2];
 };
 
-/// The quantised groups are the subtrees of at most this many points
-/// reached by the descent (a group holds its buckets and the inner nodes
-/// between them).
-constexpr uint32_t kKnnGroupBelow = 64;
-
-/// A group (at most kKnnGroupBelow points, in tree order) quantised to 8
-/// bits per coordinate, one cache line per axis: point j lies within `step`
-/// of origin + code[.][j] * step on each axis (the rounding leaves half a
-/// step; the other half is margin). Only a filter: a point is read from
-/// the tree before it is kept.
-struct alignas(64) KnnGroup {
-    uint8_t code[3][kKnnGroupBelow] = {};  ///< code[axis][j], point lo + j of the group [lo, hi)
-    float origin[3] = {0, 0, 0};           ///< at or below the group's smallest coordinate on each axis
-    float step = 0;                        ///< the group's largest extent / 255, rounded up (0: all points at origin)
-};
-
 struct KnnIndex {
     std::vector<KnnNodePair> pairs;  ///< node h at pairs[h / 2].node[h % 2]; unused numbers are holes
     std::vector<KnnGroup> groups;    ///< the group of number h at groups[h - first_group]; empty: none (see below)
@@ -102,15 +87,6 @@ struct KnnIndex {
     const KnnNode& node(uint32_t h) const { return pairs[h / 2].node[h % 2]; }
     size_t bytes() const { return pairs.capacity() * sizeof(KnnNodePair) + groups.capacity() * sizeof(KnnGroup); }
 };
-
-/// Which of the n points of `group` may lie within `bound` (squared) of p:
-/// bit j clear only when point j is certainly farther (a lower bound of its
-/// squared distance, from the quantisation step and a bound of the float
-/// rounding, exceeds it). Needs AVX2; for the query and the tests.
-uint64_t knn_group_candidates(const KnnGroup& group, uint32_t n, const Vec3& p, double bound);
-/// Whether knn_group_candidates' arithmetic is exact enough for p and
-/// bound (coordinates and bound far below float's range; else it is not used).
-bool knn_group_filter_applies(const Vec3& p, double bound);
 
 /// How often this thread's indexed queries started from a guessed bound,
 /// and how many of those were answered again from scratch (for `bench`
