@@ -13,6 +13,20 @@ using namespace pt::test;
 
 namespace {
 
+/// The 4- and 8-wide reference BVHs, with the SIMD and the scalar box
+/// tests, against the linear scan's answers.
+void check_wide_agree(const Scene& scene, const std::vector<Ray>& rays, const Expected& expected) {
+    for (int width : {4, 8}) {
+        for (bool simd : {true, false}) {
+            INFO("reference BVH, --bvh-width " << width << (simd ? ", SIMD" : ", scalar") << " box tests");
+            AcceleratorSettings wide;
+            wide.width = width;
+            wide.simd = simd;
+            check_agrees(*make_reference_bvh(scene, kReference, wide), rays, expected);
+        }
+    }
+}
+
 void check_scene(const Scene& scene, int ray_count) {
     std::vector<Ray> rays = test::test_rays(scene, ray_count, 12345);
     Expected expected = linear_answers(scene, rays);
@@ -39,15 +53,7 @@ void check_scene(const Scene& scene, int ray_count) {
         check_agrees(*make_reference_bvh(scene, kReference, binary), rays, expected);
         check_agrees(*make_reference_bvh(scene, kCalled, binary), rays, expected);
     }
-    for (int width : {4, 8}) {
-        for (bool simd : {true, false}) {
-            INFO("reference BVH, --bvh-width " << width << (simd ? ", SIMD" : ", scalar") << " box tests");
-            AcceleratorSettings wide = settings;
-            wide.width = width;
-            wide.simd = simd;
-            check_agrees(*make_reference_bvh(scene, kReference, wide), rays, expected);
-        }
-    }
+    check_wide_agree(scene, rays, expected);
     {
         INFO("reference BVH, inlined watertight triangle test (--triangle watertight)");
         check_agrees(*make_reference_bvh(scene, kWatertight, settings), rays, linear_answers(scene, rays, kWatertight));
@@ -104,15 +110,7 @@ TEST_CASE("BVH equals the linear scan: degenerate triangles in the leaves of ord
         tiny_hits += h && std::binary_search(tiny.begin(), tiny.end(), h->primitive) ? 1 : 0;
     INFO("closest hits on the tiny triangles: " << tiny_hits);
     CHECK(tiny_hits >= 100);  // the rays reach the generic path
-    for (int width : {8, 4}) {
-        for (bool simd : {true, false}) {
-            INFO("--bvh-width " << width << (simd ? ", SIMD" : ", scalar"));
-            AcceleratorSettings settings;
-            settings.width = width;
-            settings.simd = simd;
-            check_agrees(*make_reference_bvh(scene, kReference, settings), rays, expected);
-        }
-    }
+    check_wide_agree(scene, rays, expected);
 }
 
 TEST_CASE("BVH packets of coherent camera-like rays equal the linear scan") {
@@ -130,13 +128,5 @@ TEST_CASE("BVH packets of coherent camera-like rays equal the linear scan") {
             rays.push_back(Ray(eye, target - eye));
         }
     Expected expected = linear_answers(scene, rays);
-    for (int width : {4, 8}) {
-        for (bool simd : {true, false}) {
-            INFO("--bvh-width " << width << (simd ? ", SIMD" : ", scalar"));
-            AcceleratorSettings settings;
-            settings.width = width;
-            settings.simd = simd;
-            check_agrees(*make_reference_bvh(scene, kReference, settings), rays, expected);
-        }
-    }
+    check_wide_agree(scene, rays, expected);
 }
