@@ -117,8 +117,10 @@ TEST_CASE("the hidden set's correct solutions written differently pass every tas
         for (const fixtures::Fixture& f : fixtures::hidden_set_alternatives(part)) {
             Stages student = fixtures::stages_with(f);
             for (uint64_t seed = 1; seed <= 2; ++seed) {
-                GradeReport report = grade_all({manifest(part)}, environment(student, seed));
-                for (const TaskResult& t : report.tasks) {
+                for (const TaskSpec& spec : manifest(part).tasks) {
+                    // The first test case covers the tasks that run none of f's code.
+                    if (image_task_runs_only_reference(spec, student)) continue;
+                    TaskResult t = grade_task(spec, environment(student, seed));
                     INFO(f.name << ", seed " << seed << ", " << t.id << ": " << t.message);
                     CHECK(t.status == TaskStatus::pass);
                 }
