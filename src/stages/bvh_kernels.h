@@ -286,6 +286,15 @@ class InlineMollerTrumbore : public InlineTriangleSlots {
         e2 = triangles_[slot].e2;
     }
 
+    /// The slot's three corners, from the scene (for the wide BVH's
+    /// FloatCornerBlocks, which store corners and subtract the edges).
+    void corners(uint32_t slot, Vec3& p0, Vec3& p1, Vec3& p2) const {
+        const TriangleRecord& r = scene_.triangles[order_[slot]];
+        p0 = scene_.positions[r.v[0]];
+        p1 = scene_.positions[r.v[1]];
+        p2 = scene_.positions[r.v[2]];
+    }
+
   private:
     struct TriangleData {
         Vec3 p0;  ///< first corner

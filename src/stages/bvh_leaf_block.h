@@ -1,7 +1,8 @@
 // A leaf's triangles four at a time: up to four triangles stored as one
-// structure-of-arrays block of doubles and tested with AVX2, one triangle
-// per lane, in double precision. Internal to stages/bvh_wide.cpp (the
-// 8-wide BVH's AVX2 traversal).
+// structure-of-arrays block (doubles, or the corners as floats when that is
+// lossless) and tested with AVX2, one triangle per lane, in double
+// precision. Internal to stages/bvh_wide.cpp (the 8-wide BVH's AVX2
+// traversal).
 //
 // Why: the SAH tree then can make leaves of up to four triangles (fewer
 // nodes, a faster build: docs/bvh_history.md, "Build speed") without the rays
@@ -51,17 +52,84 @@ struct alignas(32) TriangleBlock {
     }
 };
 
+/// Four triangles whose corners are all exactly floats, stored as those
+/// floats: (p0, p1, p2) per lane; 144 bytes, half a TriangleBlock.
+///
+/// Why lossless: an OBJ mesh is read with float coordinates
+/// (tinyobjloader's real_t), so an untransformed mesh's corners are floats
+/// held in doubles. The test widens them back to the same doubles and forms
+/// e1 = p1 - p0, e2 = p2 - p0 in double, as TriangleBlock's builder and the
+/// reference test do (InlineMollerTrumbore::stored, reference::
+/// intersect_triangle), so every lane computes the same bits as from a
+/// TriangleBlock. A block with any other corner (a transformed mesh, a
+/// generated one) stays a TriangleBlock (bvh_wide.cpp, make_blocks).
+struct alignas(16) FloatCornerBlock {
+    float p[3][3][4];  ///< [corner][axis][lane]
+
+    FloatCornerBlock() {
+        for (auto& corner : p)
+            for (auto& axis : corner)
+                for (float& v : axis)
+                    v = NAN;  // an unused lane never hits (NaN widens to NaN)
+    }
+    /// Whether a corner is stored without loss (NaN and infinities are too).
+    static bool exact(const Vec3& v) {
+        for (int k = 0; k < 3; ++k)
+            if (!(double(float(v[k])) == v[k]) && !std::isnan(v[k])) return false;
+        return true;
+    }
+    void set(int lane, const Vec3& p0, const Vec3& p1, const Vec3& p2) {
+        for (int k = 0; k < 3; ++k) {
+            p[0][k][lane] = float(p0[k]);
+            p[1][k][lane] = float(p1[k]);
+            p[2][k][lane] = float(p2[k]);
+        }
+    }
+    Vec3 corner(int c, int lane) const { return Vec3(p[c][0][lane], p[c][1][lane], p[c][2][lane]); }
+};
+
 #if defined(__x86_64__) || defined(__i386__)
+/// A block's four triangles in registers, one per lane: p0, e1, e2.
+struct BlockLanes {
+    __m256d p0x, p0y, p0z, e1x, e1y, e1z, e2x, e2y, e2z;
+};
+
+[[gnu::target("avx2")]] inline BlockLanes load_lanes(const TriangleBlock& b) {
+    return {_mm256_load_pd(b.p0[0]), _mm256_load_pd(b.p0[1]), _mm256_load_pd(b.p0[2]),
+            _mm256_load_pd(b.e1[0]), _mm256_load_pd(b.e1[1]), _mm256_load_pd(b.e1[2]),
+            _mm256_load_pd(b.e2[0]), _mm256_load_pd(b.e2[1]), _mm256_load_pd(b.e2[2])};
+}
+
+/// Four floats widened to doubles (exact).
+[[gnu::target("avx2")]] inline __m256d widen(const float* p) {
+    return _mm256_cvtps_pd(_mm_load_ps(p));
+}
+
+/// The corners widened to double (exact), the edges subtracted in double:
+/// the bits TriangleBlock would hold.
+[[gnu::target("avx2")]] inline BlockLanes load_lanes(const FloatCornerBlock& b) {
+    const __m256d p0x = widen(b.p[0][0]), p0y = widen(b.p[0][1]), p0z = widen(b.p[0][2]);
+    return {p0x,
+            p0y,
+            p0z,
+            _mm256_sub_pd(widen(b.p[1][0]), p0x),
+            _mm256_sub_pd(widen(b.p[1][1]), p0y),
+            _mm256_sub_pd(widen(b.p[1][2]), p0z),
+            _mm256_sub_pd(widen(b.p[2][0]), p0x),
+            _mm256_sub_pd(widen(b.p[2][1]), p0y),
+            _mm256_sub_pd(widen(b.p[2][2]), p0z)};
+}
+
 /// The four lanes' Moller-Trumbore tests against the ray o + t d, t in
 /// [t_min, t_max]: bit i set when lane i hits; its t, b1, b2 go to t[i],
-/// b1[i], b2[i] (other lanes' entries are meaningless).
-[[gnu::target("avx2")]] inline unsigned intersect_block(const TriangleBlock& b, const Vec3& o,
-                                                                             const Vec3& d, double t_min,
-                                                                             double t_max, double t[4],
-                                                                             double b1[4], double b2[4]) {
+/// b1[i], b2[i] (other lanes' entries are meaningless). The lanes loaded
+/// once can serve several rays (a packet's).
+[[gnu::target("avx2")]] inline unsigned intersect_lanes(const BlockLanes& b, const Vec3& o, const Vec3& d,
+                                                        double t_min, double t_max, double t[4], double b1[4],
+                                                        double b2[4]) {
     const __m256d dx = _mm256_set1_pd(d.x), dy = _mm256_set1_pd(d.y), dz = _mm256_set1_pd(d.z);
-    const __m256d e1x = _mm256_load_pd(b.e1[0]), e1y = _mm256_load_pd(b.e1[1]), e1z = _mm256_load_pd(b.e1[2]);
-    const __m256d e2x = _mm256_load_pd(b.e2[0]), e2y = _mm256_load_pd(b.e2[1]), e2z = _mm256_load_pd(b.e2[2]);
+    const __m256d e1x = b.e1x, e1y = b.e1y, e1z = b.e1z;
+    const __m256d e2x = b.e2x, e2y = b.e2y, e2z = b.e2z;
     // pvec = cross(d, e2)
     const __m256d px = _mm256_sub_pd(_mm256_mul_pd(dy, e2z), _mm256_mul_pd(dz, e2y));
     const __m256d py = _mm256_sub_pd(_mm256_mul_pd(dz, e2x), _mm256_mul_pd(dx, e2z));
@@ -73,9 +141,9 @@ struct alignas(32) TriangleBlock {
     __m256d ok = _mm256_cmp_pd(det, zero, _CMP_NEQ_UQ);
     const __m256d inv_det = _mm256_div_pd(one, det);
     // s = o - p0
-    const __m256d sx = _mm256_sub_pd(_mm256_set1_pd(o.x), _mm256_load_pd(b.p0[0]));
-    const __m256d sy = _mm256_sub_pd(_mm256_set1_pd(o.y), _mm256_load_pd(b.p0[1]));
-    const __m256d sz = _mm256_sub_pd(_mm256_set1_pd(o.z), _mm256_load_pd(b.p0[2]));
+    const __m256d sx = _mm256_sub_pd(_mm256_set1_pd(o.x), b.p0x);
+    const __m256d sy = _mm256_sub_pd(_mm256_set1_pd(o.y), b.p0y);
+    const __m256d sz = _mm256_sub_pd(_mm256_set1_pd(o.z), b.p0z);
     // b1 = dot(s, pvec) * inv_det
     const __m256d u = _mm256_mul_pd(
         _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(sx, px), _mm256_mul_pd(sy, py)), _mm256_mul_pd(sz, pz)), inv_det);
@@ -102,6 +170,15 @@ struct alignas(32) TriangleBlock {
         _mm256_storeu_pd(b2, v);
     }
     return mask;
+}
+
+/// intersect_lanes on a TriangleBlock or a FloatCornerBlock (the same
+/// answers for the same triangles).
+template <class Block>
+[[gnu::target("avx2")]] inline unsigned intersect_block(const Block& block, const Vec3& o, const Vec3& d,
+                                                        double t_min, double t_max, double t[4], double b1[4],
+                                                        double b2[4]) {
+    return intersect_lanes(load_lanes(block), o, d, t_min, t_max, t, b1, b2);
 }
 #endif
 

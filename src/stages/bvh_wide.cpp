@@ -30,6 +30,10 @@ struct ChildRef {
 /// Set in a leaf's child index when the leaf is stored as TriangleBlocks
 /// (bvh_leaf_block.h) and the rest is the index of its first block.
 constexpr uint32_t kBlockLeaf = 0x80000000u;
+/// Also set (with kBlockLeaf) when the leaf's blocks are FloatCornerBlocks.
+constexpr uint32_t kFloatLeaf = 0x40000000u;
+/// Set in a closest hit's block lane (4 * block + lane) for a FloatCornerBlock.
+constexpr uint32_t kFloatLane = 0x80000000u;
 
 template <class Tester, int W>
 class WideReferenceBvh final : public Accelerator {
@@ -50,7 +54,7 @@ class WideReferenceBvh final : public Accelerator {
             plan_ = {};
             nodes_.assign(nodes.begin(), nodes.end());
             if constexpr (kBlocks) {
-                if (simd_ && primitives_.size() < kBlockLeaf) make_blocks();
+                if (simd_ && primitives_.size() < kFloatLeaf) make_blocks(scene);
             }
         }
         generic_prims_ = {};  // only needed until here
@@ -110,7 +114,8 @@ class WideReferenceBvh final : public Accelerator {
 
     AcceleratorInfo info() const override {
         uint64_t tree = nodes_.size() * sizeof(Node) + primitives_.size() * sizeof(uint32_t);
-        uint64_t blocks = blocks_.size() * (sizeof(TriangleBlock) + sizeof(uint32_t));
+        uint64_t blocks = blocks_.size() * (sizeof(TriangleBlock) + sizeof(uint32_t)) +
+                          float_blocks_.size() * (sizeof(FloatCornerBlock) + sizeof(uint32_t));
         return {"bvh" + std::to_string(W) + "-" + to_string(split_), nodes_.size(), depth_,
                 tree + tester_.bytes() + blocks, tree};
     }
@@ -127,7 +132,7 @@ class WideReferenceBvh final : public Accelerator {
             Hit best[kPacketSize];
         };
         uint32_t best_slot[kPacketSize];
-        /// For a closest hit found in a leaf block: 4 * block + lane; else kNoLane.
+        /// For a closest hit found in a leaf block: 4 * block + lane (| kFloatLane); else kNoLane.
         uint32_t best_lane[kPacketSize] = {kNoLane, kNoLane, kNoLane, kNoLane, kNoLane, kNoLane, kNoLane, kNoLane};
         uint32_t found = 0;  ///< bit i: ray i has a hit
     };
@@ -378,6 +383,9 @@ class WideReferenceBvh final : public Accelerator {
         if (c.count == 0) {
             p = reinterpret_cast<const char*>(&nodes_[c.index]);
             bytes = sizeof(Node);
+        } else if (kBlocks && (c.index & kFloatLeaf)) {
+            p = reinterpret_cast<const char*>(&float_blocks_[c.index & ~(kBlockLeaf | kFloatLeaf)]);
+            bytes = sizeof(FloatCornerBlock);
         } else if (kBlocks && (c.index & kBlockLeaf)) {
             p = reinterpret_cast<const char*>(&blocks_[c.index & ~kBlockLeaf]);
             bytes = sizeof(TriangleBlock);
@@ -450,17 +458,11 @@ class WideReferenceBvh final : public Accelerator {
                     continue;
                 }
             } else if (Blocks && (current.index & kBlockLeaf)) {
-#if PT_WIDE_BVH_X86
-                const uint32_t first = current.index & ~kBlockLeaf;
-                for (uint32_t b = first; (b - first) * 4 < current.count; ++b) {
-                    alignas(32) double t[4], b1[4], b2[4];
-                    tests += std::min<uint32_t>(4, current.count - (b - first) * 4);
-                    if (intersect_block(blocks_[b], ray.o, ray.d, ray.t_min, ray.t_max, t, b1, b2) != 0) {
-                        add_counts(visited, tests);
-                        return true;
-                    }
+                if (current.index & kFloatLeaf ? block_leaf_any(float_blocks_, current, ray, tests)
+                                               : block_leaf_any(blocks_, current, ray, tests)) {
+                    add_counts(visited, tests);
+                    return true;
                 }
-#endif
             } else {
                 for (uint32_t slot = current.index, end = current.index + current.count; slot < end; ++slot) {
                     ++tests;
@@ -477,6 +479,24 @@ class WideReferenceBvh final : public Accelerator {
         return false;
     }
 
+    /// Whether one of a block leaf's triangles is hit (any hit), counting
+    /// the triangles tested. Blocks: blocks_ or float_blocks_, as the
+    /// leaf's kFloatLeaf bit says.
+    template <class Blocks>
+    static bool block_leaf_any(const Blocks& blocks, ChildRef leaf, const Ray& ray, uint64_t& tests) {
+#if PT_WIDE_BVH_X86
+        const uint32_t first = leaf.index & ~(kBlockLeaf | kFloatLeaf);
+        for (uint32_t b = first; (b - first) * 4 < leaf.count; ++b) {
+            alignas(32) double t[4], b1[4], b2[4];
+            tests += std::min<uint32_t>(4, leaf.count - (b - first) * 4);
+            if (intersect_block(blocks[b], ray.o, ray.d, ray.t_min, ray.t_max, t, b1, b2) != 0) return true;
+        }
+#else
+        (void)blocks, (void)leaf, (void)ray, (void)tests;
+#endif
+        return false;
+    }
+
     /// A block leaf's triangles four at a time against one ray; the lanes'
     /// hits are then taken in slot order with the slot-by-slot loop's rules
     /// (a lane beyond a t_max lowered by an earlier lane dropped, the larger
@@ -485,29 +505,40 @@ class WideReferenceBvh final : public Accelerator {
     /// AVX2 entry points (flatten).
     bool block_leaf_closest(ChildRef leaf, Ray& r, Hit& best, uint32_t& best_slot, uint32_t* best_lane,
                             bool& found) const {
+        if (leaf.index & kFloatLeaf)
+            return block_leaf_closest(float_blocks_, float_block_slot_, kFloatLane, leaf, r, best, best_slot,
+                                      best_lane, found);
+        return block_leaf_closest(blocks_, block_slot_, 0, leaf, r, best, best_slot, best_lane, found);
+    }
+    /// The same for one kind of block (`lane_tag`: kFloatLane or 0, set in best_lane).
+    template <class Blocks>
+    bool block_leaf_closest(const Blocks& blocks, const std::vector<uint32_t>& block_slot, uint32_t lane_tag,
+                            ChildRef leaf, Ray& r, Hit& best, uint32_t& best_slot, uint32_t* best_lane,
+                            bool& found) const {
         bool changed = false;
 #if PT_WIDE_BVH_X86
-        const uint32_t first = leaf.index & ~kBlockLeaf;
+        const uint32_t first = leaf.index & ~(kBlockLeaf | kFloatLeaf);
         for (uint32_t b = first; (b - first) * 4 < leaf.count; ++b) {
             alignas(32) double t[4], b1[4], b2[4];
-            unsigned m = intersect_block(blocks_[b], r.o, r.d, r.t_min, r.t_max, t, b1, b2);
+            unsigned m = intersect_block(blocks[b], r.o, r.d, r.t_min, r.t_max, t, b1, b2);
             for (; m != 0; m &= m - 1) {
                 const int lane = __builtin_ctz(m);
                 if (!(t[lane] <= r.t_max)) continue;
-                const uint32_t slot = block_slot_[b] + uint32_t(lane);
+                const uint32_t slot = block_slot[b] + uint32_t(lane);
                 if (found && t[lane] == best.t && primitives_[slot] < primitives_[best_slot]) continue;
                 best = Hit{};
                 best.t = t[lane];
                 best.b1 = b1[lane];
                 best.b2 = b2[lane];
                 best_slot = slot;
-                if (best_lane) *best_lane = b * 4 + uint32_t(lane);
+                if (best_lane) *best_lane = (b * 4 + uint32_t(lane)) | lane_tag;
                 found = changed = true;
                 r.t_max = t[lane];
             }
         }
 #else
-        (void)leaf, (void)r, (void)best, (void)best_slot, (void)best_lane, (void)found;
+        (void)blocks, (void)block_slot, (void)lane_tag, (void)leaf, (void)r, (void)best, (void)best_slot,
+            (void)best_lane, (void)found;
 #endif
         return changed;
     }
@@ -520,18 +551,28 @@ class WideReferenceBvh final : public Accelerator {
     /// closest hit changed.
     uint32_t block_leaf_closest_packet(ChildRef leaf, uint32_t active, const Ray* rays, double* t_max,
                                        Packet& p) const {
+        if (leaf.index & kFloatLeaf)
+            return block_leaf_closest_packet(float_blocks_, float_block_slot_, kFloatLane, leaf, active, rays,
+                                             t_max, p);
+        return block_leaf_closest_packet(blocks_, block_slot_, 0, leaf, active, rays, t_max, p);
+    }
+    template <class Blocks>
+    uint32_t block_leaf_closest_packet(const Blocks& blocks, const std::vector<uint32_t>& block_slot,
+                                       uint32_t lane_tag, ChildRef leaf, uint32_t active, const Ray* rays,
+                                       double* t_max, Packet& p) const {
         uint32_t changed = 0;
 #if PT_WIDE_BVH_X86
-        const uint32_t first = leaf.index & ~kBlockLeaf;
+        const uint32_t first = leaf.index & ~(kBlockLeaf | kFloatLeaf);
         for (uint32_t b = first; (b - first) * 4 < leaf.count; ++b) {
+            const BlockLanes lanes = load_lanes(blocks[b]);  // a float block widened once for all rays
             for (uint32_t a = active; a != 0; a &= a - 1) {
                 const int k = __builtin_ctz(a);
                 alignas(32) double t[4], b1[4], b2[4];
-                unsigned m = intersect_block(blocks_[b], rays[k].o, rays[k].d, rays[k].t_min, t_max[k], t, b1, b2);
+                unsigned m = intersect_lanes(lanes, rays[k].o, rays[k].d, rays[k].t_min, t_max[k], t, b1, b2);
                 for (; m != 0; m &= m - 1) {
                     const int lane = __builtin_ctz(m);
                     if (!(t[lane] <= t_max[k])) continue;
-                    const uint32_t slot = block_slot_[b] + uint32_t(lane);
+                    const uint32_t slot = block_slot[b] + uint32_t(lane);
                     if ((p.found >> k & 1) && t[lane] == p.best[k].t && primitives_[slot] < primitives_[p.best_slot[k]])
                         continue;
                     Hit& best = p.best[k];
@@ -540,7 +581,7 @@ class WideReferenceBvh final : public Accelerator {
                     best.b1 = b1[lane];
                     best.b2 = b2[lane];
                     p.best_slot[k] = slot;
-                    p.best_lane[k] = b * 4 + uint32_t(lane);
+                    p.best_lane[k] = (b * 4 + uint32_t(lane)) | lane_tag;
                     p.found |= 1u << k;
                     changed |= 1u << k;
                     t_max[k] = t[lane];
@@ -548,7 +589,7 @@ class WideReferenceBvh final : public Accelerator {
             }
         }
 #else
-        (void)leaf, (void)active, (void)rays, (void)t_max, (void)p;
+        (void)blocks, (void)block_slot, (void)lane_tag, (void)leaf, (void)active, (void)rays, (void)t_max, (void)p;
 #endif
         return changed;
     }
@@ -559,6 +600,13 @@ class WideReferenceBvh final : public Accelerator {
     /// fetched through the scene.
     void finish_hit(uint32_t slot, uint32_t best_lane, const Ray& ray, Hit& hit) const {
         if constexpr (kBlocks) {
+            if (best_lane != kNoLane && (best_lane & kFloatLane)) {
+                const FloatCornerBlock& block = float_blocks_[(best_lane & ~kFloatLane) / 4];
+                const int l = int(best_lane % 4);
+                const Vec3 p0 = block.corner(0, l);  // e1 = p1 - p0 in double, as the block test's
+                tester_.finish_from_edges(slot, block.corner(1, l) - p0, block.corner(2, l) - p0, hit);
+                return;
+            }
             if (best_lane != kNoLane) {
                 const TriangleBlock& block = blocks_[best_lane / 4];
                 const int l = int(best_lane % 4);
@@ -591,7 +639,7 @@ class WideReferenceBvh final : public Accelerator {
 
     /// Whether the leaves will be stored as blocks (make_blocks).
     static bool uses_blocks(const FlatBvh& bvh, bool simd) {
-        return kBlocks && simd && wide_bvh_has_avx() && !bvh.nodes.empty() && bvh.primitives.size() < kBlockLeaf;
+        return kBlocks && simd && wide_bvh_has_avx() && !bvh.nodes.empty() && bvh.primitives.size() < kFloatLeaf;
     }
 
     /// The binary tree's slot order (bvh.primitives, moved out), with each
@@ -620,6 +668,7 @@ class WideReferenceBvh final : public Accelerator {
 
     /// The first slot of a leaf from its child index (a block leaf's or not).
     uint32_t leaf_slot(uint32_t index) const {
+        if (index & kFloatLeaf) return float_block_slot_[index & ~(kBlockLeaf | kFloatLeaf)];
         return (index & kBlockLeaf) ? block_slot_[index & ~kBlockLeaf] : index;
     }
 
@@ -634,13 +683,25 @@ class WideReferenceBvh final : public Accelerator {
     /// degenerate ones cost 72 bytes for each of its 124,008), and the
     /// traversal loops are not touched: a test of the generic slots after
     /// a block leaf's, tried first, made every mesh's rays 2 to 10% slower.
-    void make_blocks() {
+    /// A leaf whose corners are all exactly floats (an OBJ mesh as loaded)
+    /// gets FloatCornerBlocks, half the bytes, and kFloatLeaf; others
+    /// TriangleBlocks. Both give the same bits (bvh_leaf_block.h).
+    void make_blocks(const Scene& scene) {
         size_t count = 0;  // an upper bound on the blocks, so that they are written once
         for (const Node& node : nodes_)
             for (int i = 0; i < W; ++i)
                 count += (node.count[i] + 3u) / 4u;
-        blocks_.reserve(count);
-        block_slot_.reserve(count);
+        // All the scene's points floats: every leaf is a float leaf, no check
+        // per leaf (a sequential pass; the leaves' corners are scattered).
+        const bool all_float = std::all_of(scene.positions.begin(), scene.positions.end(),
+                                           [](const Vec3& v) { return FloatCornerBlock::exact(v); });
+        if (all_float) {
+            float_blocks_.reserve(count);
+            float_block_slot_.reserve(count);
+        } else {
+            blocks_.reserve(count);
+            block_slot_.reserve(count);
+        }
         std::vector<Node> added;  // the new two-lane nodes, appended after the loop
         for (size_t index = 0; index < nodes_.size(); ++index) {
             Node& node = nodes_[index];
@@ -677,22 +738,49 @@ class WideReferenceBvh final : public Accelerator {
                     block_node->child[generic_lane] = first + n;
                     block_node->count[generic_lane] = uint8_t(generic_count);
                     block_node->count[block_lane] = uint8_t(n);
-                    block_node->child[block_lane] = uint32_t(blocks_.size()) | kBlockLeaf;
+                    block_node->child[block_lane] = add_blocks(first, n, all_float);
                 } else {
-                    node.child[i] = uint32_t(blocks_.size()) | kBlockLeaf;
-                }
-                for (uint32_t k = 0; k < n; k += 4) {
-                    TriangleBlock& block = blocks_.emplace_back();
-                    for (uint32_t l = 0; l < 4 && k + l < n; ++l) {
-                        Vec3 p0, e1, e2;
-                        tester_.stored(first + k + l, p0, e1, e2);
-                        block.set(int(l), p0, e1, e2);
-                    }
-                    block_slot_.push_back(first + k);
+                    node.child[i] = add_blocks(first, n, all_float);
                 }
             }
         }
         nodes_.insert(nodes_.end(), added.begin(), added.end());
+    }
+
+    /// Stores slots first .. first + n - 1 (inline triangles) as blocks of
+    /// four, float ones when every corner is a float (`all_float`: known so);
+    /// returns the leaf's child index.
+    uint32_t add_blocks(uint32_t first, uint32_t n, bool all_float) {
+        bool floats = true;
+        for (uint32_t k = 0; k < n && floats && !all_float; ++k) {
+            Vec3 p0, p1, p2;
+            tester_.corners(first + k, p0, p1, p2);
+            floats = FloatCornerBlock::exact(p0) && FloatCornerBlock::exact(p1) && FloatCornerBlock::exact(p2);
+        }
+        if (floats) {
+            const uint32_t index = uint32_t(float_blocks_.size()) | kBlockLeaf | kFloatLeaf;
+            for (uint32_t k = 0; k < n; k += 4) {
+                FloatCornerBlock& block = float_blocks_.emplace_back();
+                for (uint32_t l = 0; l < 4 && k + l < n; ++l) {
+                    Vec3 p0, p1, p2;
+                    tester_.corners(first + k + l, p0, p1, p2);
+                    block.set(int(l), p0, p1, p2);
+                }
+                float_block_slot_.push_back(first + k);
+            }
+            return index;
+        }
+        const uint32_t index = uint32_t(blocks_.size()) | kBlockLeaf;
+        for (uint32_t k = 0; k < n; k += 4) {
+            TriangleBlock& block = blocks_.emplace_back();
+            for (uint32_t l = 0; l < 4 && k + l < n; ++l) {
+                Vec3 p0, e1, e2;
+                tester_.stored(first + k + l, p0, e1, e2);
+                block.set(int(l), p0, e1, e2);
+            }
+            block_slot_.push_back(first + k);
+        }
+        return index;
     }
 
     static void add_counts(uint64_t visited, uint64_t tests) {
@@ -711,6 +799,10 @@ class WideReferenceBvh final : public Accelerator {
     static constexpr bool kBlocks = W == 8 && PT_WIDE_BVH_X86 && std::is_same_v<Tester, InlineMollerTrumbore>;
     std::vector<TriangleBlock, HugePageAllocator<TriangleBlock>> blocks_;
     std::vector<uint32_t> block_slot_;
+    /// Leaves whose corners are all floats, stored so (kFloatLeaf; 144 bytes
+    /// a block instead of 288); float_block_slot_ as block_slot_.
+    std::vector<FloatCornerBlock, HugePageAllocator<FloatCornerBlock>> float_blocks_;
+    std::vector<uint32_t> float_block_slot_;
     BvhSplit split_;
     bool simd_;  ///< use the SIMD box test (else the scalar loop; same answers)
     int depth_ = 0;

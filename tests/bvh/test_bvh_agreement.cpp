@@ -7,6 +7,7 @@
 #include <doctest/doctest.h>
 
 #include "bvh_check.h"
+#include "stages/bvh_wide.h"
 
 using namespace pt;
 using namespace pt::test;
@@ -129,4 +130,89 @@ TEST_CASE("BVH packets of coherent camera-like rays equal the linear scan") {
         }
     Expected expected = linear_answers(scene, rays);
     check_wide_agree(scene, rays, expected);
+}
+
+namespace {
+
+/// The knot's corners rounded to floats (nudge = false: an OBJ mesh as
+/// loaded), or moved one double step above those floats (nudge = true:
+/// no corner is a float); `shift` moves it first.
+MeshData float_grid_knot(bool nudge, const Vec3& shift = Vec3(0, 0, 0)) {
+    MeshData knot = make_torus_knot(2, 3, 1.0, 0.25, 60, 8);
+    for (Vec3& p : knot.positions) {
+        for (int k = 0; k < 3; ++k) {
+            const double f = double(float(p[k] + shift[k]));
+            p[k] = nudge ? std::nextafter(f, INFINITY) : f;
+        }
+    }
+    return knot;
+}
+
+/// A scene of the given meshes, untransformed.
+Scene mesh_scene(const std::vector<MeshData>& meshes) {
+    Scene scene = empty_scene();
+    for (const MeshData& mesh : meshes)
+        add_mesh(scene, mesh, Transform());
+    scene.finalize();
+    return scene;
+}
+
+/// Random rays and rows of camera-like rays (so that packets stay together).
+std::vector<Ray> float_test_rays(const Scene& scene) {
+    std::vector<Ray> rays = test::test_rays(scene, 20000, 4242);
+    const BBox& b = scene.bounds;
+    const Vec3 eye = b.centroid() + Vec3(-0.2, 0.3, 2.0) * b.extent().norm();
+    for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 64; ++x) {
+            Vec3 target(b.min.x + (x + 0.5) / 64 * b.extent().x, b.min.y + (y + 0.5) / 64 * b.extent().y,
+                        b.centroid().z);
+            rays.push_back(Ray(eye, target - eye));
+        }
+    return rays;
+}
+
+}  // namespace
+
+TEST_CASE("BVH equals the linear scan: corners stored as floats or as doubles") {
+    // The 8-wide tree stores a leaf whose corners are all floats as floats
+    // (FloatCornerBlock, bvh_leaf_block.h) and any other leaf as doubles;
+    // both must give the linear scan's bits, on single rays and packets.
+    // The float mesh's blocks take half the bytes: that is how the test
+    // knows each path ran (the trees' nodes take the same bytes either way).
+    const Scene floats = mesh_scene({float_grid_knot(false)}), doubles = mesh_scene({float_grid_knot(true)});
+    AcceleratorSettings settings;  // the default: 8-wide, SIMD
+    auto float_bvh = make_reference_bvh(floats, kReference, settings);
+    auto double_bvh = make_reference_bvh(doubles, kReference, settings);
+    const AcceleratorInfo f = float_bvh->info(), d = double_bvh->info();
+    const double f_blocks = double(f.bytes - f.tree_bytes), d_blocks = double(d.bytes - d.tree_bytes);
+    if (wide_bvh_has_avx()) {
+        INFO("bytes beyond the tree: floats " << f_blocks << ", doubles " << d_blocks);
+        CHECK(f_blocks < 0.6 * d_blocks);
+    }
+    {
+        INFO("corners on the float grid");
+        const std::vector<Ray> rays = float_test_rays(floats);
+        check_agrees(*float_bvh, rays, linear_answers(floats, rays));
+    }
+    {
+        INFO("corners one double step off the float grid");
+        const std::vector<Ray> rays = float_test_rays(doubles);
+        check_agrees(*double_bvh, rays, linear_answers(doubles, rays));
+    }
+    {
+        // Both kinds of leaf in one tree: a float knot and a nudged one
+        // beside it (then each leaf is checked on its own).
+        INFO("float and double leaves in one tree");
+        const Scene mixed = mesh_scene({float_grid_knot(false), float_grid_knot(true, Vec3(1.5, 0.5, 0.25))});
+        auto mixed_bvh = make_reference_bvh(mixed, kReference, settings);
+        if (wide_bvh_has_avx()) {  // about half the leaves of each kind
+            const AcceleratorInfo m = mixed_bvh->info();
+            const double m_blocks = double(m.bytes - m.tree_bytes);
+            INFO("bytes beyond the tree: mixed " << m_blocks);
+            CHECK(m_blocks > 1.2 * 2 * f_blocks);
+            CHECK(m_blocks < 0.9 * 2 * d_blocks);
+        }
+        const std::vector<Ray> rays = float_test_rays(mixed);
+        check_agrees(*mixed_bvh, rays, linear_answers(mixed, rays));
+    }
 }
