@@ -15,13 +15,16 @@ using namespace pt::testing;
 namespace {
 
 /// The fixture's failing tasks on seeds 1 to 3 (the hidden set's on seed 1
-/// only, to keep the suite short); every task of the part on seed 1.
+/// only, to keep the suite short); every other task of the part on seed 1,
+/// but for the image tasks that run none of the fixture's code
+/// (image_task_runs_only_reference).
 void check_fails_exactly_its_tasks(int part, const fixtures::Fixture& f) {
     Stages student = fixtures::stages_with(f);
     const uint64_t last_seed = f.name.rfind("hidden:", 0) == 0 ? 1 : 3;
     for (uint64_t seed = 1; seed <= last_seed; ++seed) {
         for (const TaskSpec& spec : manifest(part).tasks) {
             if (seed > 1 && !f.fails(spec.id)) continue;
+            if (!f.fails(spec.id) && image_task_runs_only_reference(spec, student)) continue;
             TaskResult t = grade_task(spec, environment(student, seed));
             INFO("fixture '" << f.name << "', seed " << seed << ", task " << t.id << ": "
                              << t.message);
