@@ -757,28 +757,32 @@ class WideReferenceBvh final : public Accelerator {
             tester_.corners(first + k, p0, p1, p2);
             floats = FloatCornerBlock::exact(p0) && FloatCornerBlock::exact(p1) && FloatCornerBlock::exact(p2);
         }
-        if (floats) {
-            const uint32_t index = uint32_t(float_blocks_.size()) | kBlockLeaf | kFloatLeaf;
-            for (uint32_t k = 0; k < n; k += 4) {
-                FloatCornerBlock& block = float_blocks_.emplace_back();
-                for (uint32_t l = 0; l < 4 && k + l < n; ++l) {
-                    Vec3 p0, p1, p2;
-                    tester_.corners(first + k + l, p0, p1, p2);
-                    block.set(int(l), p0, p1, p2);
-                }
-                float_block_slot_.push_back(first + k);
-            }
-            return index;
-        }
-        const uint32_t index = uint32_t(blocks_.size()) | kBlockLeaf;
+        if (floats)
+            return append_blocks(float_blocks_, float_block_slot_, kBlockLeaf | kFloatLeaf, first, n,
+                                 [&](FloatCornerBlock& block, int lane, uint32_t slot) {
+                                     Vec3 p0, p1, p2;
+                                     tester_.corners(slot, p0, p1, p2);
+                                     block.set(lane, p0, p1, p2);
+                                 });
+        return append_blocks(blocks_, block_slot_, kBlockLeaf, first, n,
+                             [&](TriangleBlock& block, int lane, uint32_t slot) {
+                                 Vec3 p0, e1, e2;
+                                 tester_.stored(slot, p0, e1, e2);
+                                 block.set(lane, p0, e1, e2);
+                             });
+    }
+
+    /// Appends blocks of four for slots first .. first + n - 1 to `blocks`
+    /// (`set_lane(block, lane, slot)` fills a lane) and their first slots to
+    /// `block_slot`; returns the leaf's child index (the first block | `tag`).
+    template <class Blocks, class SetLane>
+    static uint32_t append_blocks(Blocks& blocks, std::vector<uint32_t>& block_slot, uint32_t tag, uint32_t first,
+                                  uint32_t n, SetLane set_lane) {
+        const uint32_t index = uint32_t(blocks.size()) | tag;
         for (uint32_t k = 0; k < n; k += 4) {
-            TriangleBlock& block = blocks_.emplace_back();
-            for (uint32_t l = 0; l < 4 && k + l < n; ++l) {
-                Vec3 p0, e1, e2;
-                tester_.stored(first + k + l, p0, e1, e2);
-                block.set(int(l), p0, e1, e2);
-            }
-            block_slot_.push_back(first + k);
+            auto& block = blocks.emplace_back();
+            for (uint32_t l = 0; l < 4 && k + l < n; ++l) set_lane(block, int(l), first + k + l);
+            block_slot.push_back(first + k);
         }
         return index;
     }
