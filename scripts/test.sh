@@ -7,7 +7,7 @@ case "${1:-}" in
     cat <<'USAGE'
 usage: scripts/test.sh
 Installs what is missing (scripts/setup.sh), builds everything into build/ and runs the
-whole ctest suite (about 9 minutes on 2 cores after the build). Exit 0 when every test passes.
+whole ctest suite (about 8 minutes on 2 cores after the build). Exit 0 when every test passes.
 To run some tests only: cd build && ctest -R 'cli/' -j2
 USAGE
     exit 0 ;;
