@@ -23,6 +23,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 #include "core/vec3.h"
 
@@ -74,8 +75,13 @@ struct alignas(16) FloatCornerBlock {
     }
     /// Whether a corner is stored without loss (NaN and infinities are too).
     static bool exact(const Vec3& v) {
-        for (int k = 0; k < 3; ++k)
-            if (!(double(float(v[k])) == v[k]) && !std::isnan(v[k])) return false;
+        for (int k = 0; k < 3; ++k) {
+            const double x = v[k];
+            if (std::isnan(x) || std::isinf(x)) continue;
+            // Beyond float's range the conversion is undefined: not a float.
+            if (!(std::fabs(x) <= double(std::numeric_limits<float>::max())) || double(float(x)) != x)
+                return false;
+        }
         return true;
     }
     void set(int lane, const Vec3& p0, const Vec3& p1, const Vec3& p2) {
