@@ -188,11 +188,12 @@ template <int B>
 /// slower for coherent queries, which therefore scan as they go).
 /// `far`: the query is not coherent (see kCoherent2), so its groups'
 /// candidates are prefetched as each group is filtered.
+/// `quantised` (the groups) only with `prefetch`: groups are listed as they
+/// are reached, never scanned as they come.
 enum class Collected { kAnswer, kFewer, kTie, kCrowded };
 [[gnu::target("avx2")]] Collected collect_search(const KdTree& tree, const IndexNodes& nodes, const Vec3& p, size_t k,
                                                  double bound, bool prefetch, bool far, const KnnIndex* quantised, double* best,
                                                  uint32_t* best_at) {
-    if (!prefetch) quantised = nullptr;  // the groups are listed, never scanned as they come
     // At most this many points within the guess are ranked; more (a guess
     // too large for this query) go to the sorted insertion. Through the
     // groups every point within the guess is collected before the count is
